@@ -1,0 +1,57 @@
+// Bounding volume hierarchy (binned SAH) over the bounded primitives of a scene.
+// Built once, then immutable: shared read-only by every thread. Unbounded primitives
+// (planes) are kept aside and tested on every ray.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "geometry/primitive.h"
+
+namespace pvrt {
+
+struct BvhStats {
+  uint64_t nodes = 0;
+  uint64_t leaves = 0;
+  int maxDepth = 0;
+  uint64_t bytes = 0;
+  double buildSeconds = 0;
+};
+
+struct BvhNode {
+  Bounds bounds;
+  // Interior: children at `first` (left) and `first + 1`...: left child is the next node,
+  // right child is at `rightOrFirst`. Leaf: primitives [rightOrFirst, rightOrFirst + count).
+  uint32_t rightOrFirst = 0;
+  uint16_t count = 0;  // 0 for interior nodes
+  uint8_t axis = 0;    // split axis, for front-to-back traversal
+};
+
+struct ClosestHit {
+  ShapeHit hit;
+  uint32_t primitive = 0;
+};
+
+class Bvh {
+ public:
+  Bvh() = default;
+  // Takes the primitives and reorders them for locality.
+  explicit Bvh(std::vector<Primitive> primitives);
+
+  const std::vector<Primitive>& primitives() const { return prims_; }
+  const BvhStats& stats() const { return stats_; }
+
+  // Nearest hit in (tMin, tMax). `tests` is increased by the number of primitive
+  // intersection tests performed; `skipNoShadow` ignores no_shadow objects.
+  std::optional<ClosestHit> closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
+                                    bool skipNoShadow = false) const;
+
+ private:
+  std::vector<Primitive> prims_;  // bounded ones first, then unbounded
+  uint32_t boundedCount_ = 0;
+  std::vector<BvhNode> nodes_;
+  BvhStats stats_;
+};
+
+}  // namespace pvrt

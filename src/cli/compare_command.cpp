@@ -1,0 +1,68 @@
+// `pvrt compare A B [--diff D.png]`: how far apart two images are, in 8-bit levels.
+#include <fmt/core.h>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "image/compare.h"
+
+namespace pvrt::cli {
+
+namespace {
+
+struct CompareOptions {
+  std::string a, b, diff;
+  CompareThresholds t;
+  int diffScale = 16;
+};
+
+int runCompare(const CompareOptions& o) {
+  CompareResult r;
+  try {
+    r = compareFiles(o.a, o.b);
+  } catch (const Error& e) {
+    fmt::print(stderr, "{}\n", e.what());
+    return int(CompareExit::FileError);
+  }
+  if (r.sizeMismatch) {
+    fmt::print("FAILURE: the images differ in size\n");
+    return int(CompareExit::SizeMismatch);
+  }
+  static const char* channel[] = {"R", "G", "B"};
+  fmt::print("Comparing \"{}\" and \"{}\" ({} x {})\n", o.a, o.b, r.width, r.height);
+  fmt::print("  Mean error = {:.6g} levels\n", r.meanError);
+  fmt::print("  RMS error = {:.6g} levels\n", r.rmsError);
+  fmt::print("  Peak SNR = {:.6g} dB\n", r.psnr);
+  fmt::print("  Max error = {} levels @ ({}, {}, {})\n", r.maxError, r.maxX, r.maxY, channel[r.maxChannel % 3]);
+  fmt::print("  {} channels: {} differ, {} by more than 1 level ({:.4f}%), {} by more than 2\n", r.channels, r.over0,
+             r.over1, 100.0 * double(r.over1) / double(r.channels), r.over2);
+  if (!o.diff.empty()) writeDifferenceImage(o.a, o.b, o.diff, o.diffScale);
+  if (r.over0 == 0) {
+    fmt::print("PASS (identical)\n");
+    return int(CompareExit::Match);
+  }
+  if (r.pass(o.t)) {
+    fmt::print("PASS (within {} levels, at most {:.4f}% over 1 level)\n", o.t.maxLevels, o.t.maxFractionOver1 * 100);
+    return int(CompareExit::Warning);
+  }
+  fmt::print("FAILURE\n");
+  return int(CompareExit::Failure);
+}
+
+}  // namespace
+
+Command addCompareCommand(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* c = app.add_subcommand("compare",
+                                   "Compare two images pixel by pixel. Exit 0: identical, 1: within thresholds, "
+                                   "2: over thresholds, 3: sizes differ, 4: unreadable");
+  c->add_option("a", o->a, "First image")->required();
+  c->add_option("b", o->b, "Second image")->required();
+  c->add_option("--diff", o->diff, "Write |A-B| x scale as a PNG");
+  c->add_option("--diff-scale", o->diffScale, "Scale of the difference image")->capture_default_str();
+  c->add_option("--max-levels", o->t.maxLevels, "Largest allowed difference in levels")->capture_default_str();
+  c->add_option("--max-fraction-over-1", o->t.maxFractionOver1, "Allowed share of channels over 1 level")
+      ->capture_default_str();
+  return [o] { return runCompare(*o); };
+}
+
+}  // namespace pvrt::cli

@@ -1,0 +1,64 @@
+// `pvrt generate`: the paper's random scenes of spheres and point lights, from a seed.
+#include <fmt/core.h>
+
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "generate/random_scene.h"
+#include "scene/xml_writer.h"
+
+namespace pvrt::cli {
+
+namespace {
+
+struct GenerateCliOptions {
+  GenerateOptions g;
+  std::string output, preset;
+  std::vector<double> sphereBox, lightBox, palette;
+  bool noFloor = false;
+};
+
+Vec3 lo(const std::vector<double>& b) { return {b[0], b[1], b[2]}; }
+Vec3 hi(const std::vector<double>& b) { return {b[3], b[4], b[5]}; }
+
+int runGenerate(GenerateCliOptions o) {
+  GenerateOptions g = o.g;
+  if (o.preset == "paper1") g = paperScene1();
+  if (o.preset == "paper2") g = paperScene2();
+  if (!o.preset.empty()) {  // explicit options still win over the preset
+    g.seed = o.g.seed != GenerateOptions{}.seed ? o.g.seed : g.seed;
+  }
+  if (!o.sphereBox.empty()) { g.sphereBoxLo = lo(o.sphereBox); g.sphereBoxHi = hi(o.sphereBox); }
+  if (!o.lightBox.empty()) { g.lightBoxLo = lo(o.lightBox); g.lightBoxHi = hi(o.lightBox); }
+  if (!o.palette.empty()) g.palette = {o.palette[0], o.palette[1], o.palette[2], o.palette[3]};
+  if (o.noFloor) g.floor = false;
+  for (int axis = 0; axis < 3; ++axis)
+    if (g.sphereBoxLo[axis] > g.sphereBoxHi[axis] || g.lightBoxLo[axis] > g.lightBoxHi[axis])
+      throw Error(ExitCode::Usage, "a box's low corner must not exceed its high corner");
+  writeFileAtomically(o.output, sceneToXml(generateScene(g)));
+  return 0;
+}
+
+}  // namespace
+
+Command addGenerateCommand(CLI::App& app) {
+  auto o = std::make_shared<GenerateCliOptions>();
+  CLI::App* c = app.add_subcommand("generate", "Write a random scene of spheres and point lights (paper section 2)");
+  c->add_option("-o,--output", o->output, "Scene file to write (XML)")->required();
+  c->add_option("--spheres", o->g.spheres, "Number of spheres")->check(CLI::Range(0, 100000000))->capture_default_str();
+  c->add_option("--lights", o->g.lights, "Number of point lights")->check(CLI::Range(0, 1000))->capture_default_str();
+  c->add_option("--seed", o->g.seed, "Random seed")->capture_default_str();
+  c->add_option("--width", o->g.width, "Image width stored in the scene")->check(CLI::Range(1, 65536))->capture_default_str();
+  c->add_option("--height", o->g.height, "Image height stored in the scene")->check(CLI::Range(1, 65536))->capture_default_str();
+  c->add_option("--radius-min", o->g.radiusMin, "Smallest sphere radius")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--radius-max", o->g.radiusMax, "Largest sphere radius")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--sphere-box", o->sphereBox, "Sphere centres' box: x0 y0 z0 x1 y1 z1")->expected(6);
+  c->add_option("--light-box", o->lightBox, "Light positions' box: x0 y0 z0 x1 y1 z1")->expected(6);
+  c->add_option("--palette", o->palette, "Weights of matte shiny mirror glass materials")->expected(4);
+  c->add_flag("--no-floor", o->noFloor, "Leave out the checkered floor plane");
+  c->add_option("--preset", o->preset, "Start from the paper's scene: paper1 or paper2")
+      ->check(CLI::IsMember({"paper1", "paper2"}));
+  return [o] { return runGenerate(*o); };
+}
+
+}  // namespace pvrt::cli

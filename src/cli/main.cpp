@@ -1,0 +1,44 @@
+// pvrt: render XML scenes the way POV-Ray 3.7 renders them. A thin layer over the
+// library: parse the command line, run one subcommand, map errors to exit codes.
+#include <cstdio>
+#include <map>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pvrt: a parallel ray tracer whose pictures match POV-Ray 3.7"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "pvrt 0.1.0");
+  std::map<const CLI::App*, pvrt::cli::Command> commands;
+  auto add = [&](pvrt::cli::Command (*make)(CLI::App&)) {
+    const size_t before = app.get_subcommands({}).size();
+    pvrt::cli::Command c = make(app);
+    commands[app.get_subcommands({})[before]] = std::move(c);
+  };
+  add(pvrt::cli::addRenderCommand);
+  add(pvrt::cli::addGenerateCommand);
+  add(pvrt::cli::addExportCommand);
+  add(pvrt::cli::addCompareCommand);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : int(pvrt::ExitCode::Usage);
+  }
+  try {
+    for (const CLI::App* sub : app.get_subcommands())
+      return commands.at(sub)();
+  } catch (const pvrt::Error& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return int(e.code());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "pvrt: error: out of memory\n");
+    return int(pvrt::ExitCode::Internal);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pvrt: internal error: %s\n", e.what());
+    return int(pvrt::ExitCode::Internal);
+  }
+  return 0;
+}

@@ -1,0 +1,67 @@
+// Renderable shapes after the build stage: world-space data ready for intersection.
+// A closed set of shape types dispatched by std::variant (no virtual call per ray).
+// Each shape intersects in its own object space when it carries a transform.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <variant>
+
+#include "core/ray.h"
+#include "core/transform.h"
+#include "geometry/bounds.h"
+
+namespace pvrt {
+
+// POV-Ray's tolerances (shared/povray-semantics.md section 7).
+inline constexpr double kDepthTolerance = 1e-6;   // spheres, planes, boxes, discs, triangles
+inline constexpr double kConeTolerance = 1e-9;    // cylinders and cones
+inline constexpr double kPovEpsilon = 1e-10;
+inline constexpr double kMinIsectDepth = 1e-4;    // every hit closer than this is ignored
+inline constexpr double kMaxDistance = 1e7;       // every hit farther than this is dropped
+
+struct SphereShape { Vec3 center; double radius; };
+struct PlaneShape { Vec3 normal; double distance; };  // unit normal; n.X = d
+struct BoxShape { Vec3 lo, hi; };
+struct CylinderShape { Vec3 base, cap; double radius; bool open; };
+struct ConeShape { Vec3 base; double baseRadius; Vec3 cap; double capRadius; bool open; };
+struct DiscShape { Vec3 center, normal; double radius2, hole2; };  // unit normal, squared radii
+struct TriangleShape { Vec3 p1, p2, p3; Vec3 normal; };          // unit face normal
+struct SmoothTriangleShape { Vec3 p1, p2, p3; Vec3 n1, n2, n3; Vec3 normal; };
+
+using Shape = std::variant<SphereShape, PlaneShape, BoxShape, CylinderShape, ConeShape, DiscShape,
+                           TriangleShape, SmoothTriangleShape>;
+
+// The nearest hit of one primitive: its distance along the world ray and whatever the
+// shape needs later to compute its normal (face of a box, part of a cylinder, ...).
+struct ShapeHit {
+  double t = 0;
+  int part = 0;  // shape-specific: box face, cylinder side/cap
+  double u = 0, v = 0;  // barycentrics for triangles
+};
+
+struct Primitive {
+  Shape shape;
+  std::optional<Transform> transform;  // object -> world, when the shape is not in world space
+  uint32_t material = 0;
+  uint32_t object = 0;  // index of the ObjectDesc it came from (meshes give many primitives)
+  bool noShadow = false;
+
+  // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
+  std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
+  // Geometric normal at the hit (world space, unit, not yet flipped toward the ray).
+  Vec3 normal(const Ray& ray, const ShapeHit& hit) const;
+  // World-space bounds; empty() for unbounded shapes (planes).
+  Bounds bounds() const;
+  // POV-Ray's Inside(): is the world point inside the solid? (false for flat shapes
+  // that have no inside, such as triangles).
+  bool inside(const Vec3& p) const;
+};
+
+// Triangles with their face normal normalize((p1-p2) x (p3-p2)) precomputed; a zero-area
+// triangle gets a zero normal and is never hit.
+TriangleShape makeTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3);
+SmoothTriangleShape makeSmoothTriangle(const Vec3& p1, const Vec3& n1, const Vec3& p2,
+                                       const Vec3& n2, const Vec3& p3, const Vec3& n3);
+
+}  // namespace pvrt

@@ -1,0 +1,43 @@
+#include "render/camera.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace pvrt {
+
+Camera::Camera(const CameraDesc& desc) {
+  // POV-Ray applies the modifiers in a fixed order: right, direction, angle, up, sky,
+  // location, look_at, then the camera's transforms.
+  Vec3 right = desc.right, direction = desc.direction, up = desc.up;
+  if (desc.angle) {
+    const double half = *desc.angle * std::numbers::pi / 360.0;
+    direction = normalize(direction) * (length(right) / (2.0 * std::tan(half)));
+  }
+  Vec3 location = desc.location;
+  if (desc.lookAt) {
+    const double ld = length(direction), lu = length(up), lr = length(right);
+    const double handed = dot(cross(up, direction), right) < 0 ? -1.0 : 1.0;
+    const Vec3 d = normalize(*desc.lookAt - location);
+    Vec3 r = cross(desc.sky, d);
+    if (length(r) > 0) {  // sky parallel to the view: POV-Ray keeps the old right vector
+      r = normalize(r);
+      const Vec3 u = cross(d, r);
+      direction = d * ld;
+      right = r * (handed * lr);
+      up = u * lu;
+    }
+  }
+  const Affine t = desc.transforms.combined();
+  location_ = t.applyPoint(location);
+  direction_ = t.applyVector(direction);
+  right_ = t.applyVector(right);
+  up_ = t.applyVector(up);
+}
+
+Ray Camera::ray(int x, int y, double dx, double dy, int width, int height) const {
+  const double u = (x + 0.5 + dx) / width - 0.5;
+  const double v = 0.5 - (y + 0.5 + dy) / height;
+  return {location_, normalize(direction_ + right_ * u + up_ * v)};
+}
+
+}  // namespace pvrt

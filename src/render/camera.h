@@ -1,0 +1,29 @@
+// POV-Ray's perspective camera (shared/povray-semantics.md section 1): the image plane
+// is |right| wide and |up| tall whatever the pixel counts, and rays go through pixel
+// centres, rows from the top.
+#pragma once
+
+#include "core/ray.h"
+#include "scene/scene_desc.h"
+
+namespace pvrt {
+
+class Camera {
+ public:
+  Camera() = default;
+  explicit Camera(const CameraDesc& desc);
+
+  // Ray through column x + dx, row y + dy (offsets in pixels from the pixel centre,
+  // dy positive downward) of a width x height image. Direction is unit length.
+  Ray ray(int x, int y, double dx, double dy, int width, int height) const;
+
+  const Vec3& location() const { return location_; }
+  const Vec3& direction() const { return direction_; }
+  const Vec3& right() const { return right_; }
+  const Vec3& up() const { return up_; }
+
+ private:
+  Vec3 location_, direction_{0, 0, 1}, right_{1.33, 0, 0}, up_{0, 1, 0};
+};
+
+}  // namespace pvrt

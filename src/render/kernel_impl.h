@@ -1,0 +1,39 @@
+// The body of every kernel: the pixel loop over one rectangle, instantiated for an
+// effect set in kernels_*.cpp (split so the instantiations compile in parallel).
+#pragma once
+
+#include <vector>
+
+#include "render/kernel.h"
+#include "render/tracer.h"
+
+namespace pvrt {
+
+template <EffectSet E>
+void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const WorkItem& rect, Image& image,
+                      float* load, RenderStats& stats) {
+  Tracer<E> tracer(scene, stats);
+  std::vector<SubSample> offsets;
+  const int w = image.width(), h = image.height();
+  for (int y = rect.y0; y < rect.y1; ++y) {
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      const uint64_t before = stats.work();
+      sampler.offsets(x, y, offsets);
+      Color sum;
+      for (const SubSample& s : offsets) {
+        ++stats.primaryRays;
+        sum += tracer.trace(scene.camera.ray(x, y, s.dx, s.dy, w, h), 0, 1.0, scene.cameraInteriors);
+      }
+      image.set(x, y, offsets.size() == 1 ? sum : sum * (1.0 / double(offsets.size())));
+      if (load) load[size_t(y) * w + x] = float(stats.work() - before);
+    }
+  }
+}
+
+// Fills table[Base .. Base+Count) with the kernels for those effect sets.
+template <EffectSet Base, EffectSet... I>
+void fillKernels(RectKernel* table, std::integer_sequence<EffectSet, I...>) {
+  ((table[Base + I] = &renderRectKernel<Base + I>), ...);
+}
+
+}  // namespace pvrt

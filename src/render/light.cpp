@@ -1,0 +1,83 @@
+#include "render/light.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "geometry/primitive.h"
+
+namespace pvrt {
+
+namespace {
+double cosDegrees(double deg) { return std::cos(deg * std::numbers::pi / 180.0); }
+}  // namespace
+
+Light buildLight(const LightDesc& d) {
+  Light l;
+  l.location = d.location;
+  l.color = d.color;
+  l.shadowless = d.shadowless;
+  if (d.spot) {
+    l.spot = true;
+    l.spotAxis = normalize(d.spot->pointAt - d.location);
+    l.cosRadius = cosDegrees(d.spot->radius);
+    l.cosFalloff = cosDegrees(d.spot->falloff);
+    l.tightness = d.spot->tightness;
+  }
+  l.fadeDistance = d.fadeDistance;
+  l.fadePower = d.fadePower;
+  if (d.area && d.area->size1 * d.area->size2 > 1) {
+    l.area = true;
+    l.axis1 = d.area->axis1;
+    l.axis2 = d.area->axis2;
+    l.size1 = d.area->size1;
+    l.size2 = d.area->size2;
+    l.adaptive = d.area->adaptive;
+    l.circular = d.area->circular;
+    l.orient = d.area->orient;
+  }
+  return l;
+}
+
+double Light::attenuation(const Vec3& toLight, double dist) const {
+  double k = 1.0;
+  if (spot) {
+    const double c = -dot(toLight, spotAxis);
+    if (c <= 0) return 0.0;
+    if (tightness != 0) k = std::pow(c, tightness);
+    if (c < cosRadius) {
+      if (c < cosFalloff) return 0.0;
+      // Smoothstep over cosines, as POV-Ray does (not over angles).
+      const double u = (c - cosFalloff) / (cosRadius - cosFalloff);
+      k *= u * u * (3.0 - 2.0 * u);
+    }
+  }
+  if (fadePower > 0 && fadeDistance != 0)
+    k *= 2.0 / (1.0 + std::pow(dist / fadeDistance, fadePower));
+  return k;
+}
+
+Vec3 Light::areaSample(int i, int j, const Vec3& toLight) const {
+  Vec3 a1 = axis1, a2 = axis2;
+  if (orient) {
+    // Turn the light's grid to face the shaded point, keeping |axis1| as its size.
+    const Vec3 l = -toLight;
+    Vec3 o1 = std::fabs(std::fabs(l.z) - 1.0) < 0.1 ? cross(l, Vec3{0, 1, 0}) : cross(l, Vec3{0, 0, 1});
+    o1 = normalize(o1);
+    const Vec3 o2 = normalize(cross(l, o1));
+    a1 = o1 * length(axis1);
+    a2 = o2 * length(axis1);
+  }
+  double u = size1 > 1 ? double(i) / (size1 - 1) - 0.5 : 0.0;
+  double v = size2 > 1 ? double(j) / (size2 - 1) - 0.5 : 0.0;
+  if (circular) {
+    u += 0.001;
+    v += 0.001;
+    const double r = std::sqrt(u * u + v * v);
+    const double s = std::fmax(std::fabs(u), std::fabs(v)) / r;
+    u *= s;
+    v *= s;
+  }
+  return location + a1 * u + a2 * v;
+}
+
+}  // namespace pvrt

@@ -1,0 +1,73 @@
+#include "render/sampler.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace pvrt {
+
+namespace {
+
+// SplitMix64: a well-mixed hash of the pixel and sample index (Steele et al. 2014).
+uint64_t mix(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+double unitFloat(uint64_t h) { return double(h >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+int perfectSquareRoot(int c) {
+  if (c < 1) return -1;
+  int n = int(std::lround(std::sqrt(double(c))));
+  return n * n == c ? n : -1;
+}
+
+PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
+  n_ = perfectSquareRoot(settings.samplesPerPixel);
+  if (n_ < 1)
+    throw Error(ExitCode::Usage, "--spp must be a perfect square (1, 4, 9, 16, ...), got " +
+                                     std::to_string(settings.samplesPerPixel));
+  if (s_.kind == SamplerKind::Pov) {
+    fixed_.push_back({0, 0});
+    if (n_ > 1 || settings.samplesPerPixel > 1)
+      for (int j = 0; j < n_; ++j)
+        for (int i = 0; i < n_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / n_, -0.5 + (j + 0.5) / n_});
+    count_ = int(fixed_.size());
+  } else {
+    for (int j = 0; j < n_; ++j)
+      for (int i = 0; i < n_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / n_, -0.5 + (j + 0.5) / n_});
+    count_ = n_ * n_;
+  }
+}
+
+void PixelSampler::offsets(int x, int y, std::vector<SubSample>& out) const {
+  out = fixed_;
+  if (s_.kind != SamplerKind::Jitter || count_ == 1) return;
+  const uint64_t pixel = mix(s_.seed ^ mix((uint64_t(uint32_t(y)) << 32) | uint32_t(x)));
+  for (int k = 0; k < count_; ++k) {
+    const uint64_t h = mix(pixel + uint64_t(k));
+    out[k].dx += (unitFloat(h) - 0.5) / n_;
+    out[k].dy += (unitFloat(mix(h)) - 0.5) / n_;
+  }
+}
+
+SamplerKind parseSamplerKind(const std::string& name) {
+  if (name == "pov") return SamplerKind::Pov;
+  if (name == "grid") return SamplerKind::Grid;
+  if (name == "jitter") return SamplerKind::Jitter;
+  throw Error(ExitCode::Usage, "unknown sampler \"" + name + "\" (use pov, grid or jitter)");
+}
+
+const char* samplerName(SamplerKind kind) {
+  switch (kind) {
+    case SamplerKind::Pov: return "pov";
+    case SamplerKind::Grid: return "grid";
+    case SamplerKind::Jitter: return "jitter";
+  }
+  return "?";
+}
+
+}  // namespace pvrt

@@ -1,0 +1,167 @@
+#include "render/scene.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace pvrt {
+
+namespace {
+
+// Uniform scale factor s when the linear part is s times a rotation, else 0.
+double similarityScale(const Affine& a) {
+  const double s2 = a.m[0][0] * a.m[0][0] + a.m[1][0] * a.m[1][0] + a.m[2][0] * a.m[2][0];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double d = 0;
+      for (int k = 0; k < 3; ++k) d += a.m[k][i] * a.m[k][j];
+      const double want = i == j ? s2 : 0.0;
+      if (std::fabs(d - want) > 1e-12 * s2) return 0.0;
+    }
+  return std::sqrt(s2);
+}
+
+bool isDiagonal(const Affine& a) {
+  return a.m[0][1] == 0 && a.m[0][2] == 0 && a.m[1][0] == 0 && a.m[1][2] == 0 && a.m[2][0] == 0 &&
+         a.m[2][1] == 0;
+}
+
+// POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
+Vec3 toFloat(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
+
+class PrimitiveBuilder {
+ public:
+  PrimitiveBuilder(std::vector<Primitive>& out, uint32_t object, bool noShadow, const Affine& xf)
+      : out_(out), object_(object), noShadow_(noShadow), xf_(xf), identity_(xf.isIdentity()) {}
+
+  void operator()(const SphereDesc& s) {
+    const double k = similarityScale(xf_);
+    if (k > 0) return add(SphereShape{xf_.applyPoint(s.center), s.radius * k}, false);
+    add(SphereShape{s.center, s.radius}, true);
+  }
+  void operator()(const PlaneDesc& p) {
+    const Vec3 n = normalize(p.normal);
+    PlaneShape shape{n, p.distance};
+    if (!identity_) {
+      // Transform the plane itself: a point on it and its normal.
+      const auto inv = xf_.inverse();
+      const Vec3 point = xf_.applyPoint(n * p.distance);
+      shape.normal = normalize(inv->applyTransposed(n));
+      shape.distance = dot(shape.normal, point);
+    }
+    add(shape, false);
+  }
+  void operator()(const BoxDesc& b) {
+    if (isDiagonal(xf_)) {
+      const Vec3 c1 = xf_.applyPoint(b.corner1), c2 = xf_.applyPoint(b.corner2);
+      return add(BoxShape{vmin(c1, c2), vmax(c1, c2)}, false);
+    }
+    add(BoxShape{vmin(b.corner1, b.corner2), vmax(b.corner1, b.corner2)}, true);
+  }
+  void operator()(const CylinderDesc& c) {
+    add(CylinderShape{c.base, c.cap, c.radius, c.open}, !identity_);
+  }
+  void operator()(const ConeDesc& c) {
+    add(ConeShape{c.base, c.baseRadius, c.cap, c.capRadius, c.open}, !identity_);
+  }
+  void operator()(const DiscDesc& d) {
+    add(DiscShape{d.center, normalize(d.normal), d.radius * d.radius, d.holeRadius * d.holeRadius},
+        !identity_);
+  }
+  void operator()(const TriangleDesc& t) { triangle(t, false); }
+  void operator()(const SmoothTriangleDesc& t) { smooth(t, false); }
+  void operator()(const MeshDesc& m) {
+    for (const auto& t : m.triangles) triangle(t, true);
+    for (const auto& t : m.smoothTriangles) smooth(t, true);
+  }
+
+ private:
+  Vec3 point(const Vec3& p, bool single) const {
+    const Vec3 q = single ? toFloat(p) : p;
+    return identity_ ? q : xf_.applyPoint(q);
+  }
+  Vec3 normal(const Vec3& n, bool single) const {
+    const Vec3 q = normalize(single ? toFloat(n) : n);
+    return identity_ ? q : normalize(xf_.inverse()->applyTransposed(q));
+  }
+  void triangle(const TriangleDesc& t, bool single) {
+    add(makeTriangle(point(t.p1, single), point(t.p2, single), point(t.p3, single)), false);
+  }
+  void smooth(const SmoothTriangleDesc& t, bool single) {
+    SmoothTriangleShape shape =
+        makeSmoothTriangle(point(t.p1, single), normal(t.n1, single), point(t.p2, single),
+                           normal(t.n2, single), point(t.p3, single), normal(t.n3, single));
+    // POV-Ray drops a lone smooth_triangle whose vertex normals are not all strictly on one
+    // side of its face ("Degenerate triangle"); inside a mesh the triangle is kept.
+    if (!single) {
+      const double a = dot(shape.n1, shape.normal), b = dot(shape.n2, shape.normal),
+                   c = dot(shape.n3, shape.normal);
+      if (!((a > 0 && b > 0 && c > 0) || (a < 0 && b < 0 && c < 0))) return;
+    }
+    add(shape, false);
+  }
+  void add(Shape shape, bool keepTransform) {
+    Primitive p{std::move(shape), std::nullopt, object_, object_, noShadow_};
+    if (keepTransform && !identity_) p.transform = Transform::from(xf_);
+    out_.push_back(std::move(p));
+  }
+
+  std::vector<Primitive>& out_;
+  uint32_t object_;
+  bool noShadow_;
+  Affine xf_;
+  bool identity_;
+};
+
+EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
+  EffectSet e = 0;
+  bool shadowCaster = false;
+  for (const Light& l : s.lights) {
+    if (!l.shadowless) shadowCaster = true;
+    if (l.area && !l.shadowless) e |= kAreaLights;
+    if (l.spot || (l.fadePower > 0 && l.fadeDistance != 0)) e |= kLightShaping;
+  }
+  if (shadowCaster && !desc.objects.empty()) e |= kShadows;
+  for (const Material& m : s.materials) {
+    if (m.reflective) e |= kReflection;
+    if (!m.opaque) e |= kTransmission;
+    if (m.highlights && shadowCaster) e |= kHighlights;
+    if (m.pigment.checker) e |= kTextures;
+  }
+  return e;
+}
+
+}  // namespace
+
+Scene buildScene(const SceneDesc& desc) {
+  Scene s;
+  s.camera = Camera(desc.camera);
+  s.globals = desc.globals;
+  s.background = desc.background;
+  for (const LightDesc& l : desc.lights) s.lights.push_back(buildLight(l));
+
+  std::vector<Primitive> prims;
+  for (size_t i = 0; i < desc.objects.size(); ++i) {
+    const ObjectDesc& o = desc.objects[i];
+    const Affine xf = o.transforms.combined();
+    s.materials.push_back(buildMaterial(o.material, xf));
+    std::visit(PrimitiveBuilder(prims, uint32_t(i), o.noShadow, xf), o.shape);
+  }
+  for (const Primitive& p : prims)
+    if (p.inside(s.camera.location()) && s.cameraInteriors.find(p.object) < 0)
+      s.cameraInteriors.push(p.object);
+  s.bvh = Bvh(std::move(prims));
+  s.effects = deriveEffects(s, desc);
+  return s;
+}
+
+std::string effectNames(EffectSet e) {
+  static const char* names[] = {"shadows",   "reflection",    "transmission", "highlights",
+                                "area-lights", "light-shaping", "textures",     "supersampling"};
+  std::string out;
+  for (int i = 0; i < 8; ++i)
+    if (e & (1u << i)) out += (out.empty() ? "" : " ") + std::string(names[i]);
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace pvrt

@@ -1,0 +1,50 @@
+// The built scene: everything the renderer needs, immutable after buildScene() and
+// shared read-only by every thread (and rebuilt identically on every MPI rank).
+#pragma once
+
+#include <vector>
+
+#include "accel/bvh.h"
+#include "render/camera.h"
+#include "render/effects.h"
+#include "render/light.h"
+#include "render/material.h"
+#include "scene/scene_desc.h"
+
+namespace pvrt {
+
+// The interiors a ray is inside, innermost last (object indices). Small and fixed so
+// rays carry it by value without allocating.
+struct InteriorList {
+  static constexpr int kMax = 16;
+  uint32_t ids[kMax];
+  int count = 0;
+
+  int find(uint32_t id) const {
+    for (int i = count - 1; i >= 0; --i)
+      if (ids[i] == id) return i;
+    return -1;
+  }
+  void push(uint32_t id) {
+    if (count < kMax) ids[count++] = id;
+  }
+  void remove(int index) {
+    for (int i = index; i + 1 < count; ++i) ids[i] = ids[i + 1];
+    --count;
+  }
+};
+
+struct Scene {
+  Camera camera;
+  GlobalSettings globals;
+  Color background;
+  std::vector<Material> materials;  // one per object, indexed by Primitive::material
+  std::vector<Light> lights;
+  Bvh bvh;
+  InteriorList cameraInteriors;  // objects whose inside contains the camera
+  EffectSet effects = 0;         // kernel effects (supersampling is added per render)
+};
+
+Scene buildScene(const SceneDesc& desc);
+
+}  // namespace pvrt

@@ -1,0 +1,92 @@
+// POV-Ray 3.7's finish formulas (shared/povray-semantics.md section 3), as small pure
+// functions so they can be tested one by one.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/color.h"
+#include "core/vec3.h"
+#include "scene/scene_desc.h"
+
+namespace pvrt::shading {
+
+// POV-Ray's greyscale weights for transmitted light (source/base/types.h).
+inline double grey(const Color& c) { return 0.297 * c.r + 0.589 * c.g + 0.114 * c.b; }
+
+// Fresnel-like factor POV-Ray uses to tint metallic highlights and reflections;
+// `cosAngle` is the cosine between the normal and the light or view direction.
+inline double metallicFresnel(double cosAngle) {
+  const double x = std::acos(std::clamp(cosAngle, -1.0, 1.0)) / (std::numbers::pi / 2);
+  const double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
+  return std::clamp(f, 0.0, 1.0);
+}
+
+// 1 + m(1-F)(C - 1): the tint a metallic finish gives to highlights and reflections.
+inline Color metallicTint(double metallic, double fresnel, const Color& pigment) {
+  const double k = metallic * (1.0 - fresnel);
+  return {1.0 + k * (pigment.r - 1.0), 1.0 + k * (pigment.g - 1.0), 1.0 + k * (pigment.b - 1.0)};
+}
+
+// Phong highlight strength for unit view direction d, flipped normal n, unit light dir l.
+inline double phong(const FinishDesc& f, const Vec3& d, const Vec3& n, const Vec3& l) {
+  const Vec3 r = d - n * (2.0 * dot(d, n));
+  const double c = dot(r, l);
+  if (c <= 0) return 0.0;
+  if (f.phongSize >= 60 && c <= 0.0008) return 0.0;  // POV-Ray's underflow guard
+  return f.phong * std::pow(c, f.phongSize);
+}
+
+// Blinn specular highlight; `exponent` is 1/roughness.
+inline double specular(const FinishDesc& f, double exponent, const Vec3& d, const Vec3& n,
+                       const Vec3& l) {
+  const Vec3 h = (l - d) * 0.5;
+  const double hl = length(h);
+  if (hl == 0) return 0.0;
+  const double c = dot(h, n) / hl;
+  if (c <= 0) return 0.0;
+  return f.specular * std::pow(c, exponent);
+}
+
+// Fresnel reflectance for relative index n = n_to / n_from and cos of incidence.
+inline double fresnel(double n, double cosTheta) {
+  const double g2 = n * n + cosTheta * cosTheta - 1.0;
+  if (g2 <= 0) return 1.0;
+  const double g = std::sqrt(g2);
+  const double a = (g - cosTheta) / (g + cosTheta);
+  const double b = (cosTheta * (g + cosTheta) - 1.0) / (cosTheta * (g - cosTheta) + 1.0);
+  return std::clamp(0.5 * a * a * (1.0 + b * b), 0.0, 1.0);
+}
+
+// Reflectivity at incidence cosTheta (ray-facing normal). `relIor` is the object's ior
+// relative to the medium the ray comes from (only used with fresnel).
+inline Color reflectivity(const ReflectionDesc& r, double cosTheta, double relIor,
+                          const Color& pigment) {
+  Color rho;
+  if (r.fresnel) {
+    const double f = fresnel(relIor, cosTheta);
+    rho = r.max * f + r.min * (1.0 - f);
+  } else if (r.min == r.max) {
+    rho = r.min;
+  } else {
+    const double s = std::pow(1.0 - cosTheta, r.falloff);
+    rho = r.max * s + r.min * (1.0 - s);
+  }
+  if (r.metallic != 0) rho *= metallicTint(r.metallic, metallicFresnel(cosTheta), pigment);
+  return rho;
+}
+
+// Interior fade after travelling `d` inside the object.
+inline Color interiorFade(const InteriorDesc& in, double d) {
+  if (in.fadePower >= 1000) {
+    const double k = d / in.fadeDistance;
+    return {std::exp(-(1.0 - in.fadeColor.r) * k), std::exp(-(1.0 - in.fadeColor.g) * k),
+            std::exp(-(1.0 - in.fadeColor.b) * k)};
+  }
+  const double s = 1.0 / (1.0 + std::pow(d / in.fadeDistance, in.fadePower));
+  return {in.fadeColor.r + (1.0 - in.fadeColor.r) * s, in.fadeColor.g + (1.0 - in.fadeColor.g) * s,
+          in.fadeColor.b + (1.0 - in.fadeColor.b) * s};
+}
+
+}  // namespace pvrt::shading

@@ -1,0 +1,36 @@
+// Counters of the work a render did, like POV-Ray's render statistics. Each thread
+// counts into its own copy; copies are summed after the render.
+#pragma once
+
+#include <cstdint>
+
+namespace pvrt {
+
+struct RenderStats {
+  uint64_t primaryRays = 0;
+  uint64_t shadowRays = 0;       // one per light test (per area-light sample)
+  uint64_t reflectedRays = 0;    // mirror rays, including total internal reflection
+  uint64_t refractedRays = 0;    // transmitted rays that bend (ior != 1)
+  uint64_t transmittedRays = 0;  // transmitted rays that go straight on (ior == 1)
+  uint64_t intersectionTests = 0;
+  uint64_t shadingOps = 0;       // surface hits shaded (one per hit, lights included)
+
+  uint64_t totalRays() const {
+    return primaryRays + shadowRays + reflectedRays + refractedRays + transmittedRays;
+  }
+  // The deterministic work measure of the load map: tests plus shading operations.
+  uint64_t work() const { return intersectionTests + shadingOps; }
+
+  RenderStats& operator+=(const RenderStats& o) {
+    primaryRays += o.primaryRays;
+    shadowRays += o.shadowRays;
+    reflectedRays += o.reflectedRays;
+    refractedRays += o.refractedRays;
+    transmittedRays += o.transmittedRays;
+    intersectionTests += o.intersectionTests;
+    shadingOps += o.shadingOps;
+    return *this;
+  }
+};
+
+}  // namespace pvrt

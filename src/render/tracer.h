@@ -1,0 +1,262 @@
+// The Whitted ray tracer, compiled once per effect set E: code for an effect the scene
+// does not call for is removed at compile time (`if constexpr`), not skipped per ray.
+// Follows POV-Ray 3.7's trace (shared/povray-semantics.md sections 3-5, 7, 8, 12).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "render/effects.h"
+#include "render/scene.h"
+#include "render/shading.h"
+#include "render/stats.h"
+
+namespace pvrt {
+
+inline constexpr double kShadowTolerance = 1e-3;  // POV-Ray's SHADOW_TOLERANCE
+
+template <EffectSet E>
+class Tracer {
+ public:
+  Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
+
+  // Colour seen along a unit-direction ray that enters at trace `level` with `weight`.
+  Color trace(const Ray& ray, int level, double weight, const InteriorList& inside) {
+    const auto found = scene_.bvh.closest(ray, kMinIsectDepth, kMaxDistance, stats_.intersectionTests);
+    if (!found) return scene_.background;
+    ++stats_.shadingOps;
+    const Primitive& prim = scene_.bvh.primitives()[found->primitive];
+    const double t = found->hit.t;
+    Color c = shade(ray, prim, found->hit, level + 1, weight, inside);
+    if constexpr ((E & kTransmission) != 0) {
+      // Light travelling through a fading interior loses some of its colour.
+      if (inside.count > 0) {
+        const InteriorDesc& in = scene_.materials[inside.ids[inside.count - 1]].interior;
+        if (in.fadeDistance != 0) c *= shading::interiorFade(in, t);
+      }
+    }
+    return c;
+  }
+
+ private:
+  // `level` is the level this hit runs at: 1 for the primary ray's hit.
+  Color shade(const Ray& ray, const Primitive& prim, const ShapeHit& hit, int level, double weight,
+              const InteriorList& inside) {
+    const Material& m = scene_.materials[prim.material];
+    const FinishDesc& f = m.finish;
+    const Vec3 p = ray.at(hit.t);
+    Vec3 n = prim.normal(ray, hit);
+    if (dot(n, ray.dir) > 0) n = -n;  // every surface is shaded on the side the ray sees
+
+    FilterColor pig = m.pigment.color;
+    if constexpr ((E & kTextures) != 0) pig = m.pigment.at(p);
+    const double alpha = 1.0 - pig.filter - pig.transmit;
+
+    Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
+                   pig.rgb * f.emission * alpha;
+    for (const Light& light : scene_.lights) result += lightContribution(light, m, pig, alpha, ray, p, n);
+
+    const double cosI = -dot(ray.dir, n);
+    bool totalInternal = false;
+    Color rho;
+    if constexpr ((E & kReflection) != 0) {
+      if (m.reflective) rho = shading::reflectivity(f.reflection, cosI, relativeIor(prim.object, inside), pig.rgb);
+    }
+    if constexpr ((E & kTransmission) != 0) {
+      if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
+        result += transmit(ray, prim.object, m, pig, rho, p, n, level, weight, inside, totalInternal);
+    }
+    if constexpr ((E & kReflection) != 0) {
+      if (m.reflective && !totalInternal) {
+        const double w = weight * (f.reflection.fresnel ? rho.maxComponent()
+                                                          : std::max(f.reflection.max.maxComponent(),
+                                                                     f.reflection.min.maxComponent()));
+        if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
+          ++stats_.reflectedRays;
+          Color c = trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+          if (f.reflection.exponent != 1) {
+            const double e = 1.0 / f.reflection.exponent;
+            c = {std::pow(std::max(c.r, 0.0), e), std::pow(std::max(c.g, 0.0), e), std::pow(std::max(c.b, 0.0), e)};
+          }
+          result += rho * c;
+        }
+      }
+    }
+    return result;
+  }
+
+  static Vec3 mirror(const Vec3& d, const Vec3& n) { return normalize(d - n * (2.0 * dot(d, n))); }
+
+  double iorOf(uint32_t object) const { return scene_.materials[object].interior.ior; }
+
+  // n_to / n_from for a ray crossing the surface of `object`.
+  double relativeIor(uint32_t object, const InteriorList& inside) const {
+    const int at = inside.find(object);
+    if (at >= 0) {  // leaving: into the next containing interior, or the atmosphere
+      double outer = 1.0;
+      for (int i = inside.count - 1; i >= 0; --i)
+        if (i != at) { outer = iorOf(inside.ids[i]); break; }
+      return outer / iorOf(object);
+    }
+    const double from = inside.count > 0 ? iorOf(inside.ids[inside.count - 1]) : 1.0;
+    return iorOf(object) / from;
+  }
+
+  Color transmit(const Ray& ray, uint32_t object, const Material& m, const FilterColor& pig,
+                 const Color& rho, const Vec3& p, const Vec3& n, int level, double weight,
+                 const InteriorList& inside, bool& totalInternal) {
+    Color filter = pig.rgb * pig.filter + Color(pig.transmit);
+    if (m.finish.conserveEnergy)
+      filter *= Color(std::min(1.0, 1.0 - rho.r), std::min(1.0, 1.0 - rho.g), std::min(1.0, 1.0 - rho.b));
+    const double tau = std::min(1.0, std::fabs(shading::grey(filter)));
+    if (tau <= scene_.globals.adcBailout) return {};
+    const double w = weight * std::max({std::fabs(filter.r), std::fabs(filter.g), std::fabs(filter.b)});
+    if (w < scene_.globals.adcBailout) return {};
+
+    InteriorList next = inside;
+    const int at = next.find(object);
+    if (at >= 0) next.remove(at); else next.push(object);
+
+    const double eta = 1.0 / relativeIor(object, inside);  // n_from / n_to
+    if (eta == 1.0) {
+      // Straight through: POV-Ray does not spend a trace level on it.
+      ++stats_.transmittedRays;
+      return filter * trace(Ray{p, ray.dir}, level - 1, w, next);
+    }
+    if (level >= scene_.globals.maxTraceLevel) return {};
+    const double c1 = -dot(ray.dir, n);
+    const double k = 1.0 + eta * eta * (c1 * c1 - 1.0);
+    if (k < 0) {
+      // Total internal reflection: the transmitted share comes back as a mirror ray,
+      // not tinted by the filter, and replaces the ordinary reflection.
+      totalInternal = true;
+      ++stats_.reflectedRays;
+      return trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+    }
+    ++stats_.refractedRays;
+    const Vec3 dir = normalize(ray.dir * eta + n * (eta * c1 - std::sqrt(k)));
+    return filter * trace(Ray{p, dir}, level, w, next);
+  }
+
+  Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
+                          const Ray& ray, const Vec3& p, const Vec3& n) {
+    const Vec3 toLight = light.location - p;
+    const double dist = length(toLight);
+    const Vec3 l = toLight / dist;
+    Color intensity = light.color;
+    if constexpr ((E & kLightShaping) != 0) {
+      const double a = light.attenuation(l, dist);
+      if (a == 0) return {};
+      intensity *= a;
+    }
+    const double nl = dot(n, l);
+    if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
+    if constexpr ((E & kShadows) != 0) {
+      if (!light.shadowless) {
+        intensity = intensity * shadowFactor(light, p, l, dist);
+        if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
+      }
+    }
+    const FinishDesc& f = m.finish;
+    Color c;
+    if (f.diffuse > 0) {
+      const double k = f.brilliance == 1 ? nl : std::pow(nl, f.brilliance);
+      c = pig.rgb * intensity * (f.diffuse * k * alpha);
+    }
+    if constexpr ((E & kHighlights) != 0) {
+      if (m.highlights && !light.shadowless) {
+        double h = 0;
+        if (f.phong > 0) h += shading::phong(f, ray.dir, n, l);
+        if (f.specular > 0) h += shading::specular(f, m.specularExponent, ray.dir, n, l);
+        if (h > 0) {
+          Color hc = intensity * h;
+          if (f.metallic != 0) hc *= shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pig.rgb);
+          c += hc;
+        }
+      }
+    }
+    return c;
+  }
+
+  // Fraction of the light (per channel) that reaches p: 0 behind an opaque object, the
+  // product of the filter colours of every transparent surface crossed otherwise.
+  Color shadowFactor(const Light& light, const Vec3& p, const Vec3& l, double dist) {
+    if constexpr ((E & kAreaLights) != 0) {
+      if (light.area) return areaShadow(light, p, l);
+    }
+    (void)light;
+    return segmentTransmittance(p, l, dist);
+  }
+
+  Color segmentTransmittance(Vec3 origin, const Vec3& dir, double dist) {
+    ++stats_.shadowRays;
+    Color k(1.0);
+    for (;;) {
+      const auto found = scene_.bvh.closest(Ray{origin, dir}, kShadowTolerance, dist - kShadowTolerance,
+                                            stats_.intersectionTests, /*skipNoShadow=*/true);
+      if (!found) return k;
+      if constexpr ((E & kTransmission) == 0) {
+        return {};
+      } else {
+        const Primitive& prim = scene_.bvh.primitives()[found->primitive];
+        const Material& m = scene_.materials[prim.material];
+        if (m.opaque) return {};
+        const double t = found->hit.t;
+        origin = origin + dir * t;
+        FilterColor pig = m.pigment.color;
+        if constexpr ((E & kTextures) != 0) pig = m.pigment.at(origin);
+        if (std::fabs(pig.filter) + std::fabs(pig.transmit) < scene_.globals.adcBailout) return {};
+        k *= pig.rgb * pig.filter + Color(pig.transmit);
+        dist -= t;
+      }
+    }
+  }
+
+  Color sampleShadow(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
+    const Vec3 d = light.areaSample(i, j, l) - p;
+    const double dist = length(d);
+    return segmentTransmittance(p, d / dist, dist);
+  }
+
+  // POV-Ray's recursive area-light sampling over the index rectangle [i0,i1] x [j0,j1]:
+  // corners are shadow-tested (each sample once), rectangles larger than 2x2 are split at
+  // the floor/ceil of their midpoint and averaged, which gives POV-Ray's non-uniform
+  // sample weights (1/4, 1/2, 1/4 for three samples).
+  Color areaShadow(const Light& light, const Vec3& p, const Vec3& l) {
+    cache_.assign(size_t(light.size1) * light.size2, Color(-1.0));
+    return areaRect(light, p, l, 0, light.size1 - 1, 0, light.size2 - 1, 0);
+  }
+
+  Color cachedSample(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
+    Color& c = cache_[size_t(j) * light.size1 + i];
+    if (c.r < 0) c = sampleShadow(light, p, l, i, j);
+    return c;
+  }
+
+  Color areaRect(const Light& light, const Vec3& p, const Vec3& l, int i0, int i1, int j0, int j1, int depth) {
+    const Color c00 = cachedSample(light, p, l, i0, j0), c10 = cachedSample(light, p, l, i1, j0);
+    const Color c01 = cachedSample(light, p, l, i0, j1), c11 = cachedSample(light, p, l, i1, j1);
+    auto differ = [&](const Color& a, const Color& b) {
+      const Color d = (a - b) * light.color;
+      return std::fabs(d.r) + std::fabs(d.g) + std::fabs(d.b) > 0.1;
+    };
+    if ((i1 - i0 > 1 || j1 - j0 > 1) &&
+        (depth < light.adaptive || differ(c00, c10) || differ(c10, c11) || differ(c11, c01) || differ(c01, c00))) {
+      const int ia = (i0 + i1) / 2, ib = (i0 + i1 + 1) / 2;
+      const int ja = (j0 + j1) / 2, jb = (j0 + j1 + 1) / 2;
+      Color sum = areaRect(light, p, l, i0, ia, j0, ja, depth + 1);
+      sum += areaRect(light, p, l, ib, i1, j0, ja, depth + 1);
+      sum += areaRect(light, p, l, i0, ia, jb, j1, depth + 1);
+      sum += areaRect(light, p, l, ib, i1, jb, j1, depth + 1);
+      return sum * 0.25;
+    }
+    return (c00 + c10 + c01 + c11) * 0.25;
+  }
+
+  const Scene& scene_;
+  RenderStats& stats_;
+  std::vector<Color> cache_;
+};
+
+}  // namespace pvrt

@@ -1,0 +1,61 @@
+// The same scene and settings give the same image bit for bit, whatever the backend,
+// thread count or work decomposition.
+#include <gtest/gtest.h>
+
+#include "test_scenes.h"
+
+namespace pvrt {
+namespace {
+
+const char* kScene = R"(<scene>
+  <camera location="0 3 -8" look_at="0 1 0" right="1.6 0 0"/>
+  <light_source location="-5 8 -5" color="0.8 0.8 0.8"/>
+  <light_source location="5 6 -3" color="0.4 0.4 0.5">
+    <area_light axis1="1 0 0" axis2="0 0 1" size1="3" size2="3"/>
+  </light_source>
+  <plane normal="0 1 0" distance="0">
+    <pigment><checker color1="0.9 0.9 0.9" color2="0.2 0.3 0.6"/></pigment>
+    <finish reflection="0.2"/>
+  </plane>
+  <sphere center="-1.5 1 0" radius="1"><pigment color="0.8 0.2 0.1"/><finish phong="0.8"/></sphere>
+  <sphere center="1.2 0.8 -1" radius="0.8"><pigment color="1 1 1" filter="0.9"/>
+    <finish reflection="0.1" ambient="0" diffuse="0.1"/><interior ior="1.5"/></sphere>
+</scene>)";
+
+RenderResult renderWith(Backend b, int threads, Strategy st, int chunk = 0, int tile = 8) {
+  RenderSettings s = test::settings(48, 30, b, threads);
+  s.sampler = {SamplerKind::Jitter, 4, 3};
+  s.schedule = {st, chunk, tile};
+  return test::renderXml(kScene, s);
+}
+
+TEST(Determinism, EveryBackendThreadCountAndStrategyGivesTheSameImage) {
+  const RenderResult ref = renderWith(Backend::Serial, 1, Strategy::Tiles);
+  ASSERT_GT(ref.totals.refractedRays, 0u);
+  for (int threads : {1, 2, 3}) {
+    for (Strategy st : {Strategy::Block, Strategy::Cyclic, Strategy::Static, Strategy::Dynamic,
+                        Strategy::Guided, Strategy::Tiles}) {
+      const RenderResult r = renderWith(Backend::OpenMP, threads, st, st == Strategy::Dynamic ? 3 : 0);
+      EXPECT_EQ(r.image.data(), ref.image.data()) << strategyName(st) << " with " << threads << " threads";
+      EXPECT_EQ(r.totals.totalRays(), ref.totals.totalRays());
+      EXPECT_EQ(r.totals.intersectionTests, ref.totals.intersectionTests);
+    }
+  }
+}
+
+TEST(Determinism, LoadMapIsTheSameOnEveryBackend) {
+  RenderSettings a = test::settings(32, 20, Backend::Serial, 1);
+  a.loadMap = true;
+  RenderSettings b = a;
+  b.backend = Backend::OpenMP;
+  b.threads = 2;
+  b.schedule.strategy = Strategy::Cyclic;
+  const RenderResult ra = test::renderXml(kScene, a), rb = test::renderXml(kScene, b);
+  EXPECT_EQ(ra.load, rb.load);
+  double sum = 0;
+  for (float v : ra.load) sum += v;
+  EXPECT_EQ(uint64_t(sum), ra.totals.work());
+}
+
+}  // namespace
+}  // namespace pvrt

@@ -1,0 +1,137 @@
+// End-to-end renders through the library on small inline scenes with exact answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_scenes.h"
+
+namespace pvrt {
+namespace {
+
+using test::renderXml;
+using test::settings;
+
+// Camera at the centre of a closed sphere, lit by a point light at the same centre:
+// every visible point faces the light head-on (N.L = 1) and nothing shadows it, so each
+// pixel is ambient*C + diffuse*C*light exactly.
+TEST(Render, CameraInsideLitSphereHasKnownBrightness) {
+  const RenderResult r = renderXml(R"(<scene>
+      <camera location="0 0 0" look_at="0 0 1"/>
+      <light_source location="0 0 0" color="1 1 1"/>
+      <sphere center="0 0 0" radius="10">
+        <pigment color="0.5 0.25 1"/>
+        <finish ambient="0.1" diffuse="0.6"/>
+      </sphere></scene>)",
+                                   settings(16, 12));
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const float* p = r.image.row(y) + x * 3;
+      EXPECT_NEAR(p[0], 0.5 * 0.7, 1e-6);
+      EXPECT_NEAR(p[1], 0.25 * 0.7, 1e-6);
+      EXPECT_NEAR(p[2], 1.0 * 0.7, 1e-6);
+    }
+  EXPECT_EQ(r.totals.primaryRays, 16u * 12u);
+  EXPECT_EQ(r.totals.shadowRays, 16u * 12u);
+  EXPECT_EQ(r.totals.reflectedRays, 0u);
+}
+
+TEST(Render, MissedRaysSeeTheBackground) {
+  const RenderResult r = renderXml(R"(<scene><background color="0.2 0.4 0.6"/></scene>)", settings(4, 3));
+  for (float v : {r.image.row(1)[0], r.image.row(1)[1], r.image.row(1)[2]}) EXPECT_GT(v, 0.0f);
+  EXPECT_FLOAT_EQ(r.image.row(2)[9], 0.2f);
+  EXPECT_FLOAT_EQ(r.image.row(2)[10], 0.4f);
+  EXPECT_EQ(r.effects, 0u);
+}
+
+// A plane y=0 lit from straight above by a light at height h: the pixel looking straight
+// down sees diffuse * 1 * colour (N.L = 1); the checker picks colour by cell.
+TEST(Render, PlaneUnderOverheadLightMatchesLambert) {
+  const RenderResult r = renderXml(R"(<scene>
+      <camera location="0.5 5 0.5" look_at="0.5 0 0.5" sky="0 0 1"/>
+      <light_source location="0.5 10 0.5" color="1 1 1"/>
+      <plane normal="0 1 0" distance="0">
+        <pigment color="1 1 1"/>
+        <finish ambient="0" diffuse="0.5"/>
+      </plane></scene>)",
+                                   settings(1, 1));
+  EXPECT_NEAR(r.image.row(0)[0], 0.5, 1e-9);
+}
+
+// Two facing mirrors: the number of reflected rays per primary ray is bounded by the trace
+// level: max_trace_level N allows the primary ray plus N-1 reflections.
+TEST(Render, FacingMirrorsStopAtTheTraceLevel) {
+  for (int level : {1, 3, 5}) {
+    const RenderResult r = renderXml(R"(<scene>
+        <global_settings max_trace_level=")" + std::to_string(level) + R"(" adc_bailout="0"/>
+        <camera location="0 0 0" look_at="0 0 1"/>
+        <plane normal="0 0 1" distance="5"><finish reflection="1" ambient="0" diffuse="0"/></plane>
+        <plane normal="0 0 1" distance="-5"><finish reflection="1" ambient="0" diffuse="0"/></plane>
+        </scene>)",
+                                     settings(2, 2));
+    EXPECT_EQ(r.totals.reflectedRays, 4u * uint64_t(level - 1)) << "max_trace_level " << level;
+  }
+}
+
+TEST(Render, SceneWithoutMirrorsTracesNoReflectedRays) {
+  const RenderResult r = renderXml(R"(<scene>
+      <camera location="0 2 -5" look_at="0 0 0"/>
+      <light_source location="5 5 -5"/>
+      <plane normal="0 1 0" distance="-1"><pigment color="1 1 1"/></plane>
+      <sphere center="0 0 0" radius="1"><pigment color="1 0 0"/><finish phong="0.5"/></sphere>
+      </scene>)",
+                                   settings(16, 12));
+  EXPECT_EQ(r.totals.reflectedRays, 0u);
+  EXPECT_EQ(r.totals.refractedRays, 0u);
+  EXPECT_EQ(r.totals.transmittedRays, 0u);
+  EXPECT_GT(r.totals.shadowRays, 0u);
+  EXPECT_EQ(r.effects & kReflection, 0u);
+  EXPECT_EQ(r.effects & kTransmission, 0u);
+  EXPECT_NE(r.effects & kShadows, 0u);
+  EXPECT_NE(r.effects & kHighlights, 0u);
+}
+
+TEST(Render, ShadowlessLightsTraceNoShadowRays) {
+  const RenderResult r = renderXml(R"(<scene>
+      <camera location="0 2 -5" look_at="0 0 0"/>
+      <light_source location="5 5 -5" shadowless="true"/>
+      <plane normal="0 1 0" distance="-1"><pigment color="1 1 1"/><finish reflection="0.3"/></plane>
+      <sphere center="0 0 0" radius="1"><pigment color="1 0 0"/><finish phong="0.5"/></sphere>
+      </scene>)",
+                                   settings(16, 12));
+  EXPECT_EQ(r.totals.shadowRays, 0u);
+  EXPECT_EQ(r.effects & (kShadows | kHighlights), 0u);
+  EXPECT_GT(r.totals.reflectedRays, 0u);
+}
+
+TEST(Render, GlassTracesRefractedRaysAndPlainTransmitDoesNot) {
+  const char* glass = R"(<scene>
+      <camera location="0 0 -5" look_at="0 0 0"/>
+      <light_source location="5 5 -5"/>
+      <sphere center="0 0 0" radius="1"><pigment color="1 1 1" filter="0.9"/>
+        <interior ior="1.5"/></sphere></scene>)";
+  const RenderResult g = renderXml(glass, settings(8, 8));
+  EXPECT_GT(g.totals.refractedRays, 0u);
+  EXPECT_EQ(g.totals.transmittedRays, 0u);
+  const RenderResult t = renderXml(R"(<scene>
+      <camera location="0 0 -5" look_at="0 0 0"/>
+      <sphere center="0 0 0" radius="1"><pigment color="1 1 1" transmit="0.5"/></sphere></scene>)",
+                                   settings(8, 8));
+  EXPECT_EQ(t.totals.refractedRays, 0u);
+  EXPECT_GT(t.totals.transmittedRays, 0u);
+}
+
+// A white filter-0.9 sphere between a light and a plane passes 0.9 * 0.9 of the light:
+// one factor per surface crossing (POV-Ray's shadow rays are not bent).
+TEST(Render, ShadowThroughFilterSphereMultipliesPerCrossing) {
+  const RenderResult r = renderXml(R"(<scene>
+      <camera location="0 5 0" look_at="0 0 0" sky="0 0 1"/>
+      <light_source location="0 10 0"/>
+      <plane normal="0 1 0" distance="0"><pigment color="1 1 1"/><finish ambient="0" diffuse="1"/></plane>
+      <sphere center="0 7 0" radius="1" no_shadow="false"><pigment color="1 1 1" filter="0.9"/></sphere>
+      </scene>)",
+                                   settings(1, 1));
+  EXPECT_NEAR(r.image.row(0)[0], 0.81, 1e-9);
+}
+
+}  // namespace
+}  // namespace pvrt
