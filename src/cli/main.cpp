@@ -10,6 +10,10 @@ int main(int argc, char** argv) {
   CLI::App app{"pvrt: a parallel ray tracer whose pictures match POV-Ray 3.7"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pvrt 0.1.0");
+  // One line per error, like every other error pvrt prints.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "pvrt: " + std::string(e.what()) + " (see --help)\n";
+  });
   std::map<const CLI::App*, pvrt::cli::Command> commands;
   auto add = [&](pvrt::cli::Command (*make)(CLI::App&)) {
     const size_t before = app.get_subcommands({}).size();

@@ -27,9 +27,9 @@ class Error : public std::runtime_error {
   ExitCode code_;
 };
 
-// `file:line: error: element: what is wrong` (compiler style, so editors can jump to it)
+// `file:line: element: what is wrong` (compiler style, so editors can jump to it)
 inline Error sceneError(const SourceLoc& loc, const std::string& element, const std::string& what) {
-  return Error(ExitCode::SceneError, loc.str() + ": error: " + element + ": " + what);
+  return Error(ExitCode::SceneError, loc.str() + ": " + element + ": " + what);
 }
 
 }  // namespace pvrt

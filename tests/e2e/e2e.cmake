@@ -17,7 +17,7 @@ foreach(sub render generate)
   set_tests_properties(e2e.help.${sub} PROPERTIES LABELS e2e PASS_REGULAR_EXPRESSION "Usage|Options")
 endforeach()
 
-# Bad input: one `file:line: error:` line, a documented exit code, no output file.
+# Bad input: one `file:line: element: what` line, a documented exit code, no output file.
 set(BAD ${CMAKE_CURRENT_SOURCE_DIR}/e2e/bad)
 function(pvrt_expect_error name rc regex)
   add_test(NAME e2e.error.${name}
@@ -27,12 +27,12 @@ endfunction()
 file(GLOB PVRT_BAD_SCENES CONFIGURE_DEPENDS ${BAD}/*.xml)
 foreach(scene ${PVRT_BAD_SCENES})
   get_filename_component(name ${scene} NAME_WE)
-  pvrt_expect_error(${name} 3 "^.*${name}\\.xml:[0-9]+: error: "
+  pvrt_expect_error(${name} 3 "^.*${name}\\.xml:[0-9]+: [a-z_]+: "
     $<TARGET_FILE:pvrt> render ${scene} -o ${PVRT_E2E_DIR}/${name}.png -W 8 -H 8 --quiet)
 endforeach()
-pvrt_expect_error(missing_file 3 "no-such\\.xml:[0-9]+: error: "
+pvrt_expect_error(missing_file 3 "no-such\\.xml: cannot read"
   $<TARGET_FILE:pvrt> render ${BAD}/no-such.xml -o ${PVRT_E2E_DIR}/missing_file.png)
-pvrt_expect_error(directory_as_scene 3 "bad:[0-9]+: error: "
+pvrt_expect_error(directory_as_scene 3 "bad: cannot read"
   $<TARGET_FILE:pvrt> render ${BAD} -o ${PVRT_E2E_DIR}/directory_as_scene.png)
 pvrt_expect_error(bad_extension 2 "unsupported image format"
   $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/bad_extension.bmp)

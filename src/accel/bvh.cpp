@@ -1,0 +1,228 @@
+// Binned SAH build (centroids sorted into bins per axis, the cheapest split kept) and
+// an iterative, front-to-back closest-hit traversal over the flattened tree.
+#include "accel/bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+namespace pvrt {
+
+namespace {
+
+constexpr int kBins = 16;
+constexpr int kMaxLeafSize = 4;
+constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (stack of 64)
+constexpr double kTraversalCost = 1.0;    // relative to one primitive test
+constexpr double kIntersectionCost = 1.0;
+
+struct BuildItem {
+  Bounds bounds;
+  Vec3 centroid;
+  uint32_t index;
+};
+
+class Builder {
+ public:
+  Builder(std::vector<BuildItem>& items, std::vector<BvhNode>& nodes, BvhStats& stats)
+      : items_(items), nodes_(nodes), stats_(stats) {}
+
+  void build(uint32_t begin, uint32_t end, int depth) {
+    stats_.maxDepth = std::max(stats_.maxDepth, depth);
+    const uint32_t self = uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    Bounds bounds, centroids;
+    for (uint32_t i = begin; i < end; ++i) {
+      bounds.extend(items_[i].bounds);
+      centroids.extend(items_[i].centroid);
+    }
+    nodes_[self].bounds = bounds;
+    const uint32_t count = end - begin;
+    uint32_t mid = count <= 1 ? end
+                 : depth < kMaxSahDepth ? split(begin, end, bounds, centroids)
+                                        : median(begin, end, centroids);
+    if (mid == end) {  // a leaf
+      nodes_[self].rightOrFirst = begin;
+      nodes_[self].count = uint16_t(count);
+      ++stats_.leaves;
+      return;
+    }
+    nodes_[self].axis = uint8_t(splitAxis_);
+    build(begin, mid, depth + 1);
+    nodes_[self].rightOrFirst = uint32_t(nodes_.size());
+    build(mid, end, depth + 1);
+  }
+
+ private:
+  uint32_t median(uint32_t begin, uint32_t end, const Bounds& centroids) {
+    if (end - begin <= kMaxLeafSize) return end;
+    splitAxis_ = centroids.longestAxis();
+    const uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
+                     [&](const BuildItem& a, const BuildItem& b) {
+                       return a.centroid[splitAxis_] < b.centroid[splitAxis_];
+                     });
+    return mid;
+  }
+
+  // Partitions [begin, end) and returns the split point, or `end` to make a leaf.
+  uint32_t split(uint32_t begin, uint32_t end, const Bounds& bounds, const Bounds& centroids) {
+    const uint32_t count = end - begin;
+    const double leafCost = kIntersectionCost * count;
+    double bestCost = INFINITY;
+    int bestAxis = -1, bestBin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
+      if (!(extent > 0)) continue;
+      std::array<Bounds, kBins> binBounds;
+      std::array<uint32_t, kBins> binCount{};
+      const double scale = kBins / extent;
+      for (uint32_t i = begin; i < end; ++i) {
+        const int b = std::min(kBins - 1, int((items_[i].centroid[axis] - lo) * scale));
+        binBounds[size_t(b)].extend(items_[i].bounds);
+        ++binCount[size_t(b)];
+      }
+      // Sweep from the right to get the cost of every right side, then from the left.
+      std::array<double, kBins> rightArea{};
+      std::array<uint32_t, kBins> rightCount{};
+      Bounds acc;
+      uint32_t n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        acc.extend(binBounds[size_t(b)]);
+        n += binCount[size_t(b)];
+        rightArea[size_t(b)] = acc.surfaceArea();
+        rightCount[size_t(b)] = n;
+      }
+      acc = Bounds{};
+      n = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        acc.extend(binBounds[size_t(b)]);
+        n += binCount[size_t(b)];
+        const uint32_t right = rightCount[size_t(b + 1)];
+        if (n == 0 || right == 0) continue;
+        const double cost = acc.surfaceArea() * n + rightArea[size_t(b + 1)] * right;
+        if (cost < bestCost) {
+          bestCost = cost;
+          bestAxis = axis;
+          bestBin = b;
+        }
+      }
+    }
+    const double area = bounds.surfaceArea();
+    const double splitCost = kTraversalCost + (area > 0 ? kIntersectionCost * bestCost / area : INFINITY);
+    if (bestAxis < 0) {
+      // All centroids coincide: split in the middle if the leaf would be too big.
+      if (count <= kMaxLeafSize) return end;
+      splitAxis_ = bounds.longestAxis();
+      return begin + count / 2;
+    }
+    if (count <= kMaxLeafSize && splitCost >= leafCost) return end;
+    const double lo = centroids.lo[bestAxis];
+    const double scale = kBins / (centroids.hi[bestAxis] - lo);
+    auto middle = std::partition(items_.begin() + begin, items_.begin() + end, [&](const BuildItem& it) {
+      return std::min(kBins - 1, int((it.centroid[bestAxis] - lo) * scale)) <= bestBin;
+    });
+    splitAxis_ = bestAxis;
+    const uint32_t mid = uint32_t(middle - items_.begin());
+    if (mid == begin || mid == end) return begin + count / 2;
+    return mid;
+  }
+
+  std::vector<BuildItem>& items_;
+  std::vector<BvhNode>& nodes_;
+  BvhStats& stats_;
+  int splitAxis_ = 0;
+};
+
+// Slab test: does the ray enter the box before `tMax` (and leave it after `tMin`)?
+inline bool hitsBox(const Bounds& b, const Vec3& origin, const Vec3& inv, double tMin, double tMax) {
+  for (int a = 0; a < 3; ++a) {
+    double t0 = (b.lo[a] - origin[a]) * inv[a];
+    double t1 = (b.hi[a] - origin[a]) * inv[a];
+    if (t0 > t1) std::swap(t0, t1);
+    // NaN (0 * inf on a slab boundary) must not reject: fmax/fmin ignore it.
+    tMin = std::fmax(tMin, t0);
+    tMax = std::fmin(tMax, t1 * (1 + 4e-16));  // a few ulps of slack so boundary hits are kept
+    if (tMin > tMax) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Bvh::Bvh(std::vector<Primitive> primitives) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<BuildItem> items;
+  std::vector<Primitive> unbounded;
+  items.reserve(primitives.size());
+  for (uint32_t i = 0; i < primitives.size(); ++i) {
+    const Bounds b = primitives[i].bounds();
+    if (b.empty()) continue;
+    items.push_back({b, b.centroid(), i});
+  }
+  if (!items.empty()) {
+    nodes_.reserve(2 * items.size());
+    Builder(items, nodes_, stats_).build(0, uint32_t(items.size()), 1);
+  }
+  prims_.reserve(primitives.size());
+  std::vector<bool> placed(primitives.size(), false);
+  for (const BuildItem& it : items) {
+    prims_.push_back(std::move(primitives[it.index]));
+    placed[it.index] = true;
+  }
+  boundedCount_ = uint32_t(prims_.size());
+  for (size_t i = 0; i < primitives.size(); ++i)
+    if (!placed[i]) prims_.push_back(std::move(primitives[i]));
+  stats_.nodes = nodes_.size();
+  stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * sizeof(Primitive);
+  stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
+                                       bool skipNoShadow) const {
+  std::optional<ClosestHit> best;
+  double bestT = tMax;
+  auto test = [&](uint32_t i) {
+    const Primitive& p = prims_[i];
+    if (skipNoShadow && p.noShadow) return;
+    ++tests;
+    if (auto h = p.intersect(ray, tMin, bestT)) {
+      bestT = h->t;
+      best = ClosestHit{*h, i};
+    }
+  };
+
+  if (!nodes_.empty()) {
+    const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
+    const bool negative[3] = {ray.dir.x < 0, ray.dir.y < 0, ray.dir.z < 0};
+    uint32_t stack[64];
+    int top = 0;
+    uint32_t node = 0;
+    for (;;) {
+      const BvhNode& n = nodes_[node];
+      if (hitsBox(n.bounds, ray.origin, inv, tMin, bestT)) {
+        if (n.count > 0) {
+          for (uint32_t i = n.rightOrFirst; i < n.rightOrFirst + n.count; ++i) test(i);
+        } else {
+          // Visit the child on the ray's near side first so that far boxes are culled.
+          const uint32_t left = node + 1, right = n.rightOrFirst;
+          if (negative[n.axis]) {
+            stack[top++] = left;
+            node = right;
+          } else {
+            stack[top++] = right;
+            node = left;
+          }
+          continue;
+        }
+      }
+      if (top == 0) break;
+      node = stack[--top];
+    }
+  }
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) test(i);
+  return best;
+}
+
+}  // namespace pvrt

@@ -1,0 +1,352 @@
+// Ray-shape intersection, normals, bounds and inside tests for every shape.
+// Each intersector works on an arbitrary (not necessarily unit) direction D and
+// returns the ray parameter t; tolerances are POV-Ray's, measured along unit rays.
+#include "geometry/primitive.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace pvrt {
+
+namespace {
+
+// The nearest of two candidate roots that lies inside (lo, hi).
+std::optional<double> nearestRoot(double t1, double t2, double lo, double hi) {
+  if (t1 > t2) std::swap(t1, t2);
+  if (t1 > lo && t1 < hi) return t1;
+  if (t2 > lo && t2 < hi) return t2;
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------- sphere
+
+std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double lo, double hi) {
+  const double dd = dot(ray.dir, ray.dir);
+  const double invLen = 1.0 / std::sqrt(dd);
+  const Vec3 dUnit = ray.dir * invLen;
+  const Vec3 oc = s.center - ray.origin;
+  const double ocSquared = dot(oc, oc);
+  const double r2 = s.radius * s.radius;
+  const double closest = dot(oc, dUnit);  // distance to the point of closest approach
+  if (ocSquared >= r2 && closest < kPovEpsilon) return std::nullopt;
+  // Half chord from the perpendicular distance: r^2 - |oc - D*closest|^2 keeps its
+  // precision far from the sphere, where r^2 - |oc|^2 + closest^2 cancels catastrophically.
+  const Vec3 perp = oc - dUnit * closest;
+  const double halfChord2 = r2 - dot(perp, perp);
+  if (halfChord2 <= kPovEpsilon) return std::nullopt;
+  const double half = std::sqrt(halfChord2);
+  const double loLen = std::max(lo, kDepthTolerance * invLen);
+  const auto t = nearestRoot((closest - half) * invLen, (closest + half) * invLen, loLen, hi);
+  if (!t) return std::nullopt;
+  return ShapeHit{*t};
+}
+
+// ---------------------------------------------------------------- plane
+
+std::optional<ShapeHit> hitPlane(const PlaneShape& p, const Ray& ray, double lo, double hi) {
+  const double nd = dot(p.normal, ray.dir);
+  const double len = length(ray.dir);
+  if (std::fabs(nd) < kPovEpsilon * len) return std::nullopt;
+  const double t = (p.distance - dot(p.normal, ray.origin)) / nd;
+  if (t <= std::max(lo, kDepthTolerance / len) || t >= hi) return std::nullopt;
+  return ShapeHit{t};
+}
+
+// ---------------------------------------------------------------- box
+
+std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, double hi) {
+  double tNear = -INFINITY, tFar = INFINITY;
+  int nearFace = -1, farFace = -1;
+  for (int a = 0; a < 3; ++a) {
+    const double o = ray.origin[a], d = ray.dir[a];
+    if (d == 0) {
+      if (o < b.lo[a] || o > b.hi[a]) return std::nullopt;
+      continue;
+    }
+    double t1 = (b.lo[a] - o) / d, t2 = (b.hi[a] - o) / d;
+    int f1 = 2 * a, f2 = 2 * a + 1;  // face 2a is the low side, 2a+1 the high side
+    if (t1 > t2) {
+      std::swap(t1, t2);
+      std::swap(f1, f2);
+    }
+    if (t1 > tNear) { tNear = t1; nearFace = f1; }
+    if (t2 < tFar) { tFar = t2; farFace = f2; }
+    if (tNear > tFar) return std::nullopt;
+  }
+  const double minT = std::max(lo, kDepthTolerance / length(ray.dir));
+  if (tNear > minT && tNear < hi && nearFace >= 0) return ShapeHit{tNear, nearFace};
+  if (tFar > minT && tFar < hi && farFace >= 0) return ShapeHit{tFar, farFace};
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------- cylinder and cone
+
+// A cone frustum with radius rb at the base and rc at the cap (a cylinder when equal).
+// part 0: the side, 1: the base cap, 2: the top cap.
+std::optional<ShapeHit> hitFrustum(const Vec3& base, const Vec3& cap, double rb, double rc, bool open,
+                                   const Ray& ray, double lo, double hi) {
+  const Vec3 axisFull = cap - base;
+  const double height = length(axisFull);
+  const Vec3 a = axisFull / height;
+  const Vec3 oc = ray.origin - base;
+  const double h0 = dot(oc, a), dh = dot(ray.dir, a);
+  const Vec3 oPerp = oc - a * h0, dPerp = ray.dir - a * dh;
+  const double k = (rc - rb) / height;  // radius change per unit height
+  const double r0 = rb + k * h0;
+  const double minT = std::max(lo, kConeTolerance / length(ray.dir));
+
+  ShapeHit best{hi};
+  bool found = false;
+  auto consider = [&](double t, int part) {
+    if (t > minT && t < best.t) {
+      best = ShapeHit{t, part};
+      found = true;
+    }
+  };
+
+  const double qa = dot(dPerp, dPerp) - k * k * dh * dh;
+  const double qb = 2 * (dot(oPerp, dPerp) - k * dh * r0);
+  const double qc = dot(oPerp, oPerp) - r0 * r0;
+  if (std::fabs(qa) > kPovEpsilon * dot(ray.dir, ray.dir)) {
+    const double disc = qb * qb - 4 * qa * qc;
+    if (disc >= 0) {
+      const double sq = std::sqrt(disc);
+      // The numerically stable pair of roots.
+      const double q = -0.5 * (qb + std::copysign(sq, qb));
+      const double roots[2] = {q / qa, q != 0 ? qc / q : q / qa};
+      for (double t : roots) {
+        const double h = h0 + t * dh;
+        if (h >= 0 && h <= height && rb + k * h >= 0) consider(t, 0);
+      }
+    }
+  } else if (qb != 0) {  // the ray runs parallel to a cone's slant: one root
+    const double t = -qc / qb;
+    const double h = h0 + t * dh;
+    if (h >= 0 && h <= height) consider(t, 0);
+  }
+  if (!open && std::fabs(dh) > 0) {
+    const double tBase = -h0 / dh, tCap = (height - h0) / dh;
+    const Vec3 pb = oPerp + dPerp * tBase, pc = oPerp + dPerp * tCap;
+    if (rb > 0 && dot(pb, pb) <= rb * rb) consider(tBase, 1);
+    if (rc > 0 && dot(pc, pc) <= rc * rc) consider(tCap, 2);
+  }
+  if (!found) return std::nullopt;
+  return best;
+}
+
+Vec3 frustumNormal(const Vec3& base, const Vec3& cap, double rb, double rc, const Vec3& p, int part) {
+  const Vec3 axisFull = cap - base;
+  const double height = length(axisFull);
+  const Vec3 a = axisFull / height;
+  if (part == 1) return -a;
+  if (part == 2) return a;
+  const double h = dot(p - base, a);
+  const Vec3 perp = (p - base) - a * h;
+  const double k = (rc - rb) / height;
+  const double r = rb + k * h;
+  // Gradient of |perp|^2 - r(h)^2, halved.
+  return normalize(perp - a * (r * k));
+}
+
+// ---------------------------------------------------------------- disc
+
+std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, double hi) {
+  const double nd = dot(d.normal, ray.dir);
+  const double len = length(ray.dir);
+  if (std::fabs(nd) < kPovEpsilon * len) return std::nullopt;
+  const double t = dot(d.normal, d.center - ray.origin) / nd;
+  if (t <= std::max(lo, kDepthTolerance / len) || t >= hi) return std::nullopt;
+  const Vec3 off = ray.at(t) - d.center;
+  const double r2 = dot(off, off);
+  if (r2 < d.hole2 || r2 > d.radius2) return std::nullopt;
+  return ShapeHit{t};
+}
+
+// ---------------------------------------------------------------- triangles
+
+// Watertight ray-triangle test (Woop, Benthin and Wald 2013): rays through a shared
+// edge or vertex hit exactly one of the triangles that meet there, so meshes never leak.
+std::optional<ShapeHit> hitTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Ray& ray,
+                                    double lo, double hi) {
+  const Vec3& d = ray.dir;
+  int kz = 0;
+  if (std::fabs(d.y) > std::fabs(d[kz])) kz = 1;
+  if (std::fabs(d.z) > std::fabs(d[kz])) kz = 2;
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (d[kz] < 0) std::swap(kx, ky);
+  const double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
+
+  const Vec3 a = p1 - ray.origin, b = p2 - ray.origin, c = p3 - ray.origin;
+  const double ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+  const double bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+  const double cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+  const double u = cx * by - cy * bx;  // weight of p1
+  const double v = ax * cy - ay * cx;  // weight of p2
+  const double w = bx * ay - by * ax;  // weight of p3
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return std::nullopt;
+  const double det = u + v + w;
+  if (det == 0) return std::nullopt;
+  const double tScaled = u * sz * a[kz] + v * sz * b[kz] + w * sz * c[kz];
+  const double t = tScaled / det;
+  if (t <= std::max(lo, kDepthTolerance / length(d)) || t >= hi) return std::nullopt;
+  return ShapeHit{t, 0, v / det, w / det};
+}
+
+struct Intersector {
+  const Ray& ray;
+  double lo, hi;
+  std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi); }
+  std::optional<ShapeHit> operator()(const PlaneShape& p) const { return hitPlane(p, ray, lo, hi); }
+  std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi); }
+  std::optional<ShapeHit> operator()(const CylinderShape& c) const {
+    return hitFrustum(c.base, c.cap, c.radius, c.radius, c.open, ray, lo, hi);
+  }
+  std::optional<ShapeHit> operator()(const ConeShape& c) const {
+    return hitFrustum(c.base, c.cap, c.baseRadius, c.capRadius, c.open, ray, lo, hi);
+  }
+  std::optional<ShapeHit> operator()(const DiscShape& d) const { return hitDisc(d, ray, lo, hi); }
+  std::optional<ShapeHit> operator()(const TriangleShape& t) const {
+    if (t.normal == Vec3{}) return std::nullopt;
+    return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi);
+  }
+  std::optional<ShapeHit> operator()(const SmoothTriangleShape& t) const {
+    if (t.normal == Vec3{}) return std::nullopt;
+    return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi);
+  }
+};
+
+// Object-space normal at object-space point p.
+struct Normal {
+  const Vec3& p;
+  const ShapeHit& hit;
+  Vec3 operator()(const SphereShape& s) const { return (p - s.center) / s.radius; }
+  Vec3 operator()(const PlaneShape& s) const { return s.normal; }
+  Vec3 operator()(const BoxShape&) const {
+    Vec3 n;
+    n[hit.part / 2] = hit.part % 2 ? 1.0 : -1.0;
+    return n;
+  }
+  Vec3 operator()(const CylinderShape& c) const {
+    return frustumNormal(c.base, c.cap, c.radius, c.radius, p, hit.part);
+  }
+  Vec3 operator()(const ConeShape& c) const {
+    return frustumNormal(c.base, c.cap, c.baseRadius, c.capRadius, p, hit.part);
+  }
+  Vec3 operator()(const DiscShape& d) const { return d.normal; }
+  Vec3 operator()(const TriangleShape& t) const { return t.normal; }
+  Vec3 operator()(const SmoothTriangleShape& t) const {
+    const Vec3 n = t.n1 * (1 - hit.u - hit.v) + t.n2 * hit.u + t.n3 * hit.v;
+    const double len = length(n);
+    return len > 0 ? n / len : t.normal;
+  }
+};
+
+// Bounds of a disc of radius r around centre c perpendicular to unit axis a.
+Bounds discBounds(const Vec3& c, const Vec3& a, double r) {
+  Bounds b;
+  Vec3 e;
+  for (int i = 0; i < 3; ++i) e[i] = r * std::sqrt(std::max(0.0, 1 - a[i] * a[i]));
+  b.extend(c - e);
+  b.extend(c + e);
+  return b;
+}
+
+struct LocalBounds {
+  Bounds operator()(const SphereShape& s) const {
+    return {s.center - Vec3(s.radius), s.center + Vec3(s.radius)};
+  }
+  Bounds operator()(const PlaneShape&) const { return {}; }
+  Bounds operator()(const BoxShape& b) const { return {b.lo, b.hi}; }
+  Bounds operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
+  Bounds operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
+  Bounds operator()(const DiscShape& d) const { return discBounds(d.center, d.normal, std::sqrt(d.radius2)); }
+  Bounds operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  Bounds operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  static Bounds tri(const Vec3& a, const Vec3& b, const Vec3& c) {
+    Bounds r;
+    r.extend(a);
+    r.extend(b);
+    r.extend(c);
+    return r;
+  }
+  static Bounds frustum(const Vec3& base, const Vec3& cap, double rb, double rc) {
+    const Vec3 a = normalize(cap - base);
+    Bounds r = discBounds(base, a, rb);
+    r.extend(discBounds(cap, a, rc));
+    return r;
+  }
+};
+
+struct Inside {
+  const Vec3& p;
+  bool operator()(const SphereShape& s) const {
+    const Vec3 d = p - s.center;
+    return dot(d, d) < s.radius * s.radius;
+  }
+  bool operator()(const PlaneShape& s) const { return dot(s.normal, p) - s.distance < kPovEpsilon; }
+  bool operator()(const BoxShape& b) const {
+    return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
+  }
+  bool operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
+  bool operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
+  bool operator()(const DiscShape& d) const { return dot(d.normal, p - d.center) < 0; }
+  bool operator()(const TriangleShape&) const { return false; }
+  bool operator()(const SmoothTriangleShape&) const { return false; }
+  bool frustum(const Vec3& base, const Vec3& cap, double rb, double rc) const {
+    const double height = length(cap - base);
+    const Vec3 a = (cap - base) / height;
+    const double h = dot(p - base, a);
+    if (h < 0 || h > height) return false;
+    const Vec3 perp = (p - base) - a * h;
+    const double r = rb + (rc - rb) * h / height;
+    return dot(perp, perp) < r * r;
+  }
+};
+
+}  // namespace
+
+std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
+  if (!transform) return std::visit(Intersector{ray, tMin, tMax}, shape);
+  // An affine map keeps the ray parameter: the local hit at t is the world hit at t.
+  const Ray local{transform->toObject.applyPoint(ray.origin), transform->toObject.applyVector(ray.dir)};
+  return std::visit(Intersector{local, tMin, tMax}, shape);
+}
+
+Vec3 Primitive::normal(const Ray& ray, const ShapeHit& hit) const {
+  const Vec3 world = ray.at(hit.t);
+  if (!transform) return normalize(std::visit(Normal{world, hit}, shape));
+  const Vec3 local = transform->toObject.applyPoint(world);
+  return transform->normalToWorld(std::visit(Normal{local, hit}, shape));
+}
+
+Bounds Primitive::bounds() const {
+  const Bounds local = std::visit(LocalBounds{}, shape);
+  if (!transform || local.empty()) return local;
+  Bounds world;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner{(i & 1) ? local.hi.x : local.lo.x, (i & 2) ? local.hi.y : local.lo.y,
+                      (i & 4) ? local.hi.z : local.lo.z};
+    world.extend(transform->toWorld.applyPoint(corner));
+  }
+  return world;
+}
+
+bool Primitive::inside(const Vec3& p) const {
+  const Vec3 local = transform ? transform->toObject.applyPoint(p) : p;
+  return std::visit(Inside{local}, shape);
+}
+
+TriangleShape makeTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  const Vec3 n = cross(p1 - p2, p3 - p2);
+  const double len = length(n);
+  return {p1, p2, p3, len > 0 && std::isfinite(len) ? n / len : Vec3{}};
+}
+
+SmoothTriangleShape makeSmoothTriangle(const Vec3& p1, const Vec3& n1, const Vec3& p2, const Vec3& n2,
+                                       const Vec3& p3, const Vec3& n3) {
+  const TriangleShape flat = makeTriangle(p1, p2, p3);
+  return {p1, p2, p3, normalize(n1), normalize(n2), normalize(n3), flat.normal};
+}
+
+}  // namespace pvrt
