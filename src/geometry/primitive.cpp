@@ -21,25 +21,35 @@ std::optional<double> nearestRoot(double t1, double t2, double lo, double hi) {
 
 // ---------------------------------------------------------------- sphere
 
-std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double lo, double hi) {
-  const double dd = dot(ray.dir, ray.dir);
-  const double invLen = 1.0 / std::sqrt(dd);
-  const Vec3 dUnit = ray.dir * invLen;
-  const Vec3 oc = s.center - ray.origin;
+// POV-Ray's sphere test on a direction it takes as unit length (world rays are; local
+// rays of transformed spheres are normalised by the caller, as POV-Ray does).
+std::optional<ShapeHit> hitUnitSphere(const Vec3& center, double r2, const Vec3& origin, const Vec3& dir,
+                                      double lo, double hi) {
+  const Vec3 oc = center - origin;
   const double ocSquared = dot(oc, oc);
-  const double r2 = s.radius * s.radius;
-  const double closest = dot(oc, dUnit);  // distance to the point of closest approach
+  const double closest = dot(oc, dir);  // distance to the point of closest approach
   if (ocSquared >= r2 && closest < kPovEpsilon) return std::nullopt;
-  // Half chord from the perpendicular distance: r^2 - |oc - D*closest|^2 keeps its
-  // precision far from the sphere, where r^2 - |oc|^2 + closest^2 cancels catastrophically.
-  const Vec3 perp = oc - dUnit * closest;
-  const double halfChord2 = r2 - dot(perp, perp);
+  double halfChord2 = r2 - ocSquared + closest * closest;
+  // POV-Ray's form cancels catastrophically for a small sphere far away (|oc|^2 >> r^2);
+  // there the perpendicular distance gives the half chord to full precision instead.
+  // Elsewhere we keep POV-Ray's arithmetic so that images match it bit for bit.
+  if (ocSquared > 1e6 * r2) {
+    const Vec3 perp = oc - dir * closest;
+    halfChord2 = r2 - dot(perp, perp);
+  }
   if (halfChord2 <= kPovEpsilon) return std::nullopt;
   const double half = std::sqrt(halfChord2);
-  const double loLen = std::max(lo, kDepthTolerance * invLen);
-  const auto t = nearestRoot((closest - half) * invLen, (closest + half) * invLen, loLen, hi);
+  const auto t = nearestRoot(closest - half, closest + half, std::max(lo, kDepthTolerance), hi);
   if (!t) return std::nullopt;
   return ShapeHit{*t};
+}
+
+std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double lo, double hi, bool unitDir) {
+  if (unitDir) return hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir, lo, hi);
+  const double len = length(ray.dir);
+  auto h = hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir / len, lo * len, hi * len);
+  if (h) h->t /= len;
+  return h;
 }
 
 // ---------------------------------------------------------------- plane
@@ -196,7 +206,8 @@ std::optional<ShapeHit> hitTriangle(const Vec3& p1, const Vec3& p2, const Vec3& 
 struct Intersector {
   const Ray& ray;
   double lo, hi;
-  std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi); }
+  bool unitDir;  // world rays have unit directions; local rays of transformed shapes need not
+  std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi, unitDir); }
   std::optional<ShapeHit> operator()(const PlaneShape& p) const { return hitPlane(p, ray, lo, hi); }
   std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi); }
   std::optional<ShapeHit> operator()(const CylinderShape& c) const {
@@ -307,15 +318,16 @@ struct Inside {
 }  // namespace
 
 std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
-  if (!transform) return std::visit(Intersector{ray, tMin, tMax}, shape);
+  if (!transform) return std::visit(Intersector{ray, tMin, tMax, true}, shape);
   // An affine map keeps the ray parameter: the local hit at t is the world hit at t.
   const Ray local{transform->toObject.applyPoint(ray.origin), transform->toObject.applyVector(ray.dir)};
-  return std::visit(Intersector{local, tMin, tMax}, shape);
+  return std::visit(Intersector{local, tMin, tMax, false}, shape);
 }
 
 Vec3 Primitive::normal(const Ray& ray, const ShapeHit& hit) const {
   const Vec3 world = ray.at(hit.t);
-  if (!transform) return normalize(std::visit(Normal{world, hit}, shape));
+  // Every shape's normal is unit already (a sphere's (P-C)/r as POV-Ray leaves it).
+  if (!transform) return std::visit(Normal{world, hit}, shape);
   const Vec3 local = transform->toObject.applyPoint(world);
   return transform->normalToWorld(std::visit(Normal{local, hit}, shape));
 }

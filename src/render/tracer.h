@@ -27,16 +27,7 @@ class Tracer {
     if (!found) return scene_.background;
     ++stats_.shadingOps;
     const Primitive& prim = scene_.bvh.primitives()[found->primitive];
-    const double t = found->hit.t;
-    Color c = shade(ray, prim, found->hit, level + 1, weight, inside);
-    if constexpr ((E & kTransmission) != 0) {
-      // Light travelling through a fading interior loses some of its colour.
-      if (inside.count > 0) {
-        const InteriorDesc& in = scene_.materials[inside.ids[inside.count - 1]].interior;
-        if (in.fadeDistance != 0) c *= shading::interiorFade(in, t);
-      }
-    }
-    return c;
+    return shade(ray, prim, found->hit, level + 1, weight, inside);
   }
 
  private:
@@ -55,17 +46,17 @@ class Tracer {
 
     Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
                    pig.rgb * f.emission * alpha;
-    for (const Light& light : scene_.lights) result += lightContribution(light, m, pig, alpha, ray, p, n);
+    for (const Light& light : scene_.lights) result += lightContribution(light, m, pig, alpha, ray, p, n, inside);
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
     Color rho;
     if constexpr ((E & kReflection) != 0) {
-      if (m.reflective) rho = shading::reflectivity(f.reflection, cosI, relativeIor(prim.object, inside), pig.rgb);
+      if (m.reflective) rho = shading::reflectivity(f.reflection, cosI, fresnelIor(prim.object, inside), pig.rgb);
     }
     if constexpr ((E & kTransmission) != 0) {
       if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
-        result += transmit(ray, prim.object, m, pig, rho, p, n, level, weight, inside, totalInternal);
+        result += transmit(ray, hit.t, prim.object, m, pig, rho, p, n, level, weight, inside, totalInternal);
     }
     if constexpr ((E & kReflection) != 0) {
       if (m.reflective && !totalInternal) {
@@ -90,20 +81,31 @@ class Tracer {
 
   double iorOf(uint32_t object) const { return scene_.materials[object].interior.ior; }
 
-  // n_to / n_from for a ray crossing the surface of `object`.
-  double relativeIor(uint32_t object, const InteriorList& inside) const {
-    const int at = inside.find(object);
-    if (at >= 0) {  // leaving: into the next containing interior, or the atmosphere
-      double outer = 1.0;
-      for (int i = inside.count - 1; i >= 0; --i)
-        if (i != at) { outer = iorOf(inside.ids[i]); break; }
-      return outer / iorOf(object);
-    }
-    const double from = inside.count > 0 ? iorOf(inside.ids[inside.count - 1]) : 1.0;
-    return iorOf(object) / from;
+  // n_to / n_from at the surface of `object`, for the fresnel reflectivity. POV-Ray's
+  // ComputeRelativeIOR: when leaving an object that is nested in another it divides the
+  // innermost interior's ior by the object's own, which gives 1; we match that.
+  double fresnelIor(uint32_t object, const InteriorList& inside) const {
+    if (inside.count == 0) return iorOf(object) / 1.0;
+    const double back = iorOf(inside.ids[inside.count - 1]);
+    if (inside.find(object) >= 0) return inside.count == 1 ? 1.0 / iorOf(object) : back / iorOf(object);
+    return iorOf(object) / back;
   }
 
-  Color transmit(const Ray& ray, uint32_t object, const Material& m, const FilterColor& pig,
+  // n_from / n_to for a ray refracted at the surface of `object`, as POV-Ray's
+  // ComputeRefraction forms it (nested objects count as outside their container; the
+  // overlap of two objects belongs to the one entered last).
+  double refractionEta(uint32_t object, const InteriorList& inside) const {
+    if (inside.count == 0) return 1.0 / iorOf(object);
+    const uint32_t back = inside.ids[inside.count - 1];
+    if (back == object)
+      return inside.count == 1 ? iorOf(object) / 1.0 : iorOf(object) / iorOf(inside.ids[inside.count - 2]);
+    if (inside.find(object) >= 0) return 1.0;
+    return iorOf(back) / iorOf(object);
+  }
+
+  // Light leaving an object through this surface has crossed its interior for `depth`;
+  // POV-Ray fades only that transmitted share, not the surface's own shading.
+  Color transmit(const Ray& ray, double depth, uint32_t object, const Material& m, const FilterColor& pig,
                  const Color& rho, const Vec3& p, const Vec3& n, int level, double weight,
                  const InteriorList& inside, bool& totalInternal) {
     Color filter = pig.rgb * pig.filter + Color(pig.transmit);
@@ -117,12 +119,17 @@ class Tracer {
     InteriorList next = inside;
     const int at = next.find(object);
     if (at >= 0) next.remove(at); else next.push(object);
+    Color fade(1.0);
+    if (at >= 0) {
+      const InteriorDesc& in = m.interior;
+      if (std::fabs(in.fadeDistance) > kPovEpsilon) fade = shading::interiorFade(in, depth);
+    }
 
-    const double eta = 1.0 / relativeIor(object, inside);  // n_from / n_to
-    if (eta == 1.0) {
+    const double eta = refractionEta(object, inside);
+    if (std::fabs(eta - 1.0) < kPovEpsilon) {
       // Straight through: POV-Ray does not spend a trace level on it.
       ++stats_.transmittedRays;
-      return filter * trace(Ray{p, ray.dir}, level - 1, w, next);
+      return fade * filter * trace(Ray{p, ray.dir}, level - 1, w, next);
     }
     if (level >= scene_.globals.maxTraceLevel) return {};
     const double c1 = -dot(ray.dir, n);
@@ -132,15 +139,16 @@ class Tracer {
       // not tinted by the filter, and replaces the ordinary reflection.
       totalInternal = true;
       ++stats_.reflectedRays;
-      return trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+      return fade * trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
     }
     ++stats_.refractedRays;
-    const Vec3 dir = normalize(ray.dir * eta + n * (eta * c1 - std::sqrt(k)));
-    return filter * trace(Ray{p, dir}, level, w, next);
+    // Heckbert's formula; unit length in exact arithmetic and, as in POV-Ray, not renormalised.
+    const Vec3 dir = ray.dir * eta + n * (eta * c1 - std::sqrt(k));
+    return fade * filter * trace(Ray{p, dir}, level, w, next);
   }
 
   Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
-                          const Ray& ray, const Vec3& p, const Vec3& n) {
+                          const Ray& ray, const Vec3& p, const Vec3& n, const InteriorList& inside) {
     const Vec3 toLight = light.location - p;
     const double dist = length(toLight);
     const Vec3 l = toLight / dist;
@@ -154,7 +162,7 @@ class Tracer {
     if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
-        intensity = intensity * shadowFactor(light, p, l, dist);
+        intensity = intensity * shadowFactor(light, p, l, dist, inside);
         if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
       }
     }
@@ -181,15 +189,16 @@ class Tracer {
 
   // Fraction of the light (per channel) that reaches p: 0 behind an opaque object, the
   // product of the filter colours of every transparent surface crossed otherwise.
-  Color shadowFactor(const Light& light, const Vec3& p, const Vec3& l, double dist) {
+  // `inside` lists the interiors the shadow ray starts in (those of the ray being shaded).
+  Color shadowFactor(const Light& light, const Vec3& p, const Vec3& l, double dist, const InteriorList& inside) {
     if constexpr ((E & kAreaLights) != 0) {
-      if (light.area) return areaShadow(light, p, l);
+      if (light.area) return areaShadow(light, p, l, inside);
     }
     (void)light;
-    return segmentTransmittance(p, l, dist);
+    return segmentTransmittance(p, l, dist, inside);
   }
 
-  Color segmentTransmittance(Vec3 origin, const Vec3& dir, double dist) {
+  Color segmentTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside) {
     ++stats_.shadowRays;
     Color k(1.0);
     for (;;) {
@@ -208,29 +217,40 @@ class Tracer {
         if constexpr ((E & kTextures) != 0) pig = m.pigment.at(origin);
         if (std::fabs(pig.filter) + std::fabs(pig.transmit) < scene_.globals.adcBailout) return {};
         k *= pig.rgb * pig.filter + Color(pig.transmit);
+        // Leaving a fading interior: the light crossed it for t (POV-Ray fades shadow rays
+        // only when fade_power > 0).
+        const int at = inside.find(prim.object);
+        if (at >= 0) {
+          const InteriorDesc& in = m.interior;
+          if (in.fadePower > 0 && std::fabs(in.fadeDistance) > kPovEpsilon) k *= shading::interiorFade(in, t);
+          inside.remove(at);
+        } else {
+          inside.push(prim.object);
+        }
         dist -= t;
       }
     }
   }
 
-  Color sampleShadow(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
+  Color sampleShadow(const Light& light, const Vec3& p, const Vec3& l, int i, int j, const InteriorList& inside) {
     const Vec3 d = light.areaSample(i, j, l) - p;
     const double dist = length(d);
-    return segmentTransmittance(p, d / dist, dist);
+    return segmentTransmittance(p, d / dist, dist, inside);
   }
 
   // POV-Ray's recursive area-light sampling over the index rectangle [i0,i1] x [j0,j1]:
   // corners are shadow-tested (each sample once), rectangles larger than 2x2 are split at
   // the floor/ceil of their midpoint and averaged, which gives POV-Ray's non-uniform
   // sample weights (1/4, 1/2, 1/4 for three samples).
-  Color areaShadow(const Light& light, const Vec3& p, const Vec3& l) {
+  Color areaShadow(const Light& light, const Vec3& p, const Vec3& l, const InteriorList& inside) {
     cache_.assign(size_t(light.size1) * light.size2, Color(-1.0));
+    areaInside_ = &inside;
     return areaRect(light, p, l, 0, light.size1 - 1, 0, light.size2 - 1, 0);
   }
 
   Color cachedSample(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
     Color& c = cache_[size_t(j) * light.size1 + i];
-    if (c.r < 0) c = sampleShadow(light, p, l, i, j);
+    if (c.r < 0) c = sampleShadow(light, p, l, i, j, *areaInside_);
     return c;
   }
 
@@ -257,6 +277,7 @@ class Tracer {
   const Scene& scene_;
   RenderStats& stats_;
   std::vector<Color> cache_;
+  const InteriorList* areaInside_ = nullptr;  // interiors the current area-light samples start in
 };
 
 }  // namespace pvrt

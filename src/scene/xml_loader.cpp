@@ -4,6 +4,7 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <sys/stat.h>
 
 #include "core/error.h"
@@ -35,6 +37,34 @@ std::vector<std::string> words(const char* text) {
   }
   if (!cur.empty()) out.push_back(std::move(cur));
   return out;
+}
+
+// For a number that std::from_chars read whole but found out of range: whether it is too
+// large (rather than too small) for a double. Out-of-range magnitudes lie above 1e308 or
+// below 1e-323, so the rough decimal exponent (digits before the point, less the zeros
+// after it, plus the written exponent) tells them apart.
+bool overflows(std::string_view w) {
+  if (!w.empty() && w[0] == '-') w.remove_prefix(1);
+  const size_t e = std::min(w.find_first_of("eE"), w.size());
+  const std::string_view mantissa = w.substr(0, e);
+  const size_t point = std::min(mantissa.find('.'), mantissa.size());
+  const std::string_view whole = mantissa.substr(0, point);
+  long long order = 0;
+  if (const size_t nz = whole.find_first_not_of('0'); nz != std::string_view::npos) {
+    order = static_cast<long long>(whole.size() - nz);
+  } else if (point < mantissa.size()) {
+    const std::string_view frac = mantissa.substr(point + 1);
+    order = -static_cast<long long>(std::min(frac.find_first_not_of('0'), frac.size()));
+  }
+  if (e + 1 < w.size()) {
+    std::string_view exp = w.substr(e + 1);
+    const bool negative = exp[0] == '-';
+    if (exp[0] == '-' || exp[0] == '+') exp.remove_prefix(1);
+    long long x = 0;
+    if (std::from_chars(exp.data(), exp.data() + exp.size(), x).ec != std::errc()) x = 1'000'000'000;
+    order += negative ? -std::min(x, 1'000'000'000LL) : std::min(x, 1'000'000'000LL);
+  }
+  return order > 0;
 }
 
 // The attributes of one element. Each read marks its attribute as used, so that
@@ -91,8 +121,8 @@ class Attributes {
     if (w.size() != 3) throw error(attr(name) + " must be a vector of 3 numbers, got \"" + raw(name) + "\"");
     return {parseNumber(name, w[0]), parseNumber(name, w[1]), parseNumber(name, w[2])};
   }
-  Vec3 nonZeroVec(const char* name, Vec3 fallback) {
-    const Vec3 v = vec(name, fallback);
+  Vec3 nonZeroVec(const char* name, std::optional<Vec3> fallback = std::nullopt) {
+    const Vec3 v = fallback ? vec(name, *fallback) : vec(name);
     if (dot(v, v) == 0) throw error(attr(name) + " must not be the zero vector");
     return v;
   }
@@ -137,7 +167,9 @@ class Attributes {
     if (*begin == '+') ++begin;
     const char* end = w.data() + w.size();
     auto [p, ec] = std::from_chars(begin, end, v);
-    if (ec == std::errc::result_out_of_range && std::fabs(v) < 1)  // underflow: tiny is zero
+    // from_chars leaves `v` untouched when out of range, so tell underflow (a number too
+    // tiny for a double: zero) from overflow (an error) by its decimal exponent.
+    if (ec == std::errc::result_out_of_range && p == end && !overflows(std::string_view(begin, end)))
       ec = std::errc();
     if (ec == std::errc::result_out_of_range)
       throw error(attr(name) + ": " + w + " is out of range");
@@ -590,11 +622,11 @@ class Loader {
     SmoothTriangleDesc t;
     t.loc = a.loc();
     t.p1 = a.vec("p1");
-    t.n1 = a.nonZeroVec("n1", {});
+    t.n1 = a.nonZeroVec("n1");
     t.p2 = a.vec("p2");
-    t.n2 = a.nonZeroVec("n2", {});
+    t.n2 = a.nonZeroVec("n2");
     t.p3 = a.vec("p3");
-    t.n3 = a.nonZeroVec("n3", {});
+    t.n3 = a.nonZeroVec("n3");
     return t;
   }
 
