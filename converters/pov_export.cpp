@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 namespace pvrt {
 
 namespace {
@@ -20,7 +22,8 @@ class Writer {
   explicit Writer(const SceneDesc& s) : s_(s) {}
 
   PovExport run() {
-    out_ += "// Exported by pvrt from " + s_.path + "\n";
+    // The file name only: the export must not depend on where the repository lies.
+    out_ += "// Exported by pvrt from " + std::filesystem::path(s_.path).filename().string() + "\n";
     if (s_.image) out_ += fmt::format("// Render with: +W{} +H{}\n", s_.image->width, s_.image->height);
     out_ += "#version 3.7;\n";
     const GlobalSettings& g = s_.globals;
