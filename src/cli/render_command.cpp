@@ -2,7 +2,11 @@
 #include <csignal>
 #include <chrono>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
 #include <filesystem>
 
 #include <fmt/core.h>
@@ -12,6 +16,8 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/image_io.h"
+#include "parallel/cluster.h"
+#include "render/distributed.h"
 #include "render/renderer.h"
 #include "scene/xml_loader.h"
 #include "scene/xml_writer.h"
@@ -25,6 +31,8 @@ extern "C" void onInterrupt(int) { gInterrupted.store(true); }
 
 struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
+  std::string gatherName = "gather", loadMap;
+  bool masterRenders = false;
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
   uint64_t seed = 0;
   bool stats = false, quiet = false;
@@ -34,7 +42,7 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& scene, const RenderResult& r,
-                double loadS, double buildS, double writeS) {
+                double loadS, double buildS, double writeS, const std::vector<RankStats>& ranks = {}) {
   const RenderStats& t = r.totals;
   auto line = [](const char* what, uint64_t n) { fmt::print("  {:<22}{:>16}\n", what, n); };
   fmt::print("Render statistics\n");
@@ -59,11 +67,55 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", loadS,
              buildS, r.seconds, writeS);
   fmt::print("  Rays per second       {:.0f}\n", r.seconds > 0 ? double(t.totalRays()) / r.seconds : 0.0);
+  if (!ranks.empty()) {
+    fmt::print("  Gather                {}\n", o.gatherName);
+    fmt::print("  {:<6}{:>7}{:>10}{:>16}{:>11}{:>10}{:>10}{:>10}{:>12}\n", "Rank", "items", "pixels", "work",
+               "compute s", "comm s", "idle s", "wall s", "sent KiB");
+    double maxC = 0, sumC = 0, maxW = 0, sumW = 0;
+    for (size_t i = 0; i < ranks.size(); ++i) {
+      const RankStats& k = ranks[i];
+      fmt::print("  {:<6}{:>7}{:>10}{:>16}{:>11.4f}{:>10.4f}{:>10.4f}{:>10.4f}{:>12.1f}\n", i, k.items, k.pixels,
+                 k.counts.work(), k.computeSeconds, k.commSeconds, k.idleSeconds, k.wallSeconds,
+                 k.bytesSent / 1024.0);
+      maxC = std::max(maxC, k.computeSeconds);
+      sumC += k.computeSeconds;
+      maxW = std::max(maxW, double(k.counts.work()));
+      sumW += double(k.counts.work());
+    }
+    const double nr = double(ranks.size());
+    // Ranks that render nothing (a pure dynamic master) are left out of the means.
+    double active = 0;
+    for (const RankStats& k : ranks) active += k.pixels > 0 ? 1 : 0;
+    fmt::print("  Imbalance (max/mean)  work {:.3f}, compute time {:.3f} over {} rendering rank(s) of {}\n",
+               sumW > 0 ? maxW / (sumW / active) : 0.0, sumC > 0 ? maxC / (sumC / active) : 0.0, active, nr);
+    return;
+  }
   for (size_t w = 0; w < r.workers.size(); ++w) {
     const WorkerStats& ws = r.workers[w];
     fmt::print("  Worker {:<3}            {:>9} pixels, {:>12} rays, {:>14} work, {:.4f} s\n", w, ws.pixels,
                ws.counts.totalRays(), ws.counts.work(), ws.seconds);
   }
+}
+
+// The load map as the paper's figures show it: linear work counts in an EXR and a
+// log-scale false-colour PNG (dark blue: little work, yellow-white: most).
+void writeLoadMap(const std::string& prefix, const std::vector<float>& load, int width, int height) {
+  Image raw(width, height), colour(width, height);
+  float hi = 0;
+  for (float v : load) hi = std::max(hi, v);
+  const double logHi = std::log1p(double(hi));
+  static const Color ramp[] = {{0.0, 0.0, 0.05}, {0.1, 0.0, 0.4}, {0.6, 0.05, 0.3}, {0.95, 0.4, 0.0}, {1.0, 1.0, 0.6}};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double v = load[size_t(y) * width + x];
+      raw.set(x, y, Color(v));
+      const double t = logHi > 0 ? std::log1p(v) / logHi * 4.0 : 0.0;
+      const int i = std::min(3, int(t));
+      const double f = t - i;
+      colour.set(x, y, ramp[i] * (1 - f) + ramp[i + 1] * f);
+    }
+  writeImage(raw, prefix + ".exr");
+  writeImage(colour, prefix + ".png");
 }
 
 // Fails before any work is done when the output could not be written as asked.
@@ -77,15 +129,24 @@ void checkOutputFormat(const std::string& path) {
     throw Error(ExitCode::OutputError, "cannot write \"" + path + "\": no such directory \"" + dir.string() + "\"");
 }
 
-int runRender(const RenderOptions& o) {
-  checkOutputFormat(o.output);
-  const auto t0 = Clock::now();
-  SceneDesc desc = loadSceneFile(o.scene);
-  const double loadS = since(t0);
+// Everything up to a built scene; local to each process (and to each MPI rank).
+struct Prepared {
+  SceneDesc desc;
+  RenderSettings settings;
+  Scene scene;
+  double loadS = 0, buildS = 0;
+};
 
-  RenderSettings s;
-  s.width = o.width > 0 ? o.width : (desc.image ? desc.image->width : 320);
-  s.height = o.height > 0 ? o.height : (desc.image ? desc.image->height : 240);
+Prepared prepare(const RenderOptions& o) {
+  checkOutputFormat(o.output);
+  Prepared p;
+  const auto t0 = Clock::now();
+  p.desc = loadSceneFile(o.scene);
+  p.loadS = since(t0);
+
+  RenderSettings& s = p.settings;
+  s.width = o.width > 0 ? o.width : (p.desc.image ? p.desc.image->width : 320);
+  s.height = o.height > 0 ? o.height : (p.desc.image ? p.desc.image->height : 240);
   if (long(s.width) * s.height > (1L << 28))
     throw Error(ExitCode::Usage, fmt::format("image of {} x {} pixels is too large", s.width, s.height));
   s.sampler.kind = parseSamplerKind(o.samplerName);
@@ -101,22 +162,29 @@ int runRender(const RenderOptions& o) {
   }
   if (o.chunk > 0) s.schedule.chunk = o.chunk;
   s.schedule.tileSize = o.tileSize;
+  s.loadMap = !o.loadMap.empty();
   s.cancel = &gInterrupted;
-
-  if (!o.saveScene.empty()) {
-    desc.image = ImageDesc{s.width, s.height, {}};
-    writeFileAtomically(o.saveScene, sceneToXml(desc));
+  if (!o.loadMap.empty()) checkOutputFormat(o.loadMap + ".png");
+  if (!o.saveScene.empty() && (o.backendName != "mpi" || cluster::rank() == 0)) {
+    SceneDesc copy = p.desc;
+    copy.image = ImageDesc{s.width, s.height, {}};
+    writeFileAtomically(o.saveScene, sceneToXml(copy));
   }
-
   const auto t1 = Clock::now();
-  const Scene scene = buildScene(desc);
-  const double buildS = since(t1);
+  p.scene = buildScene(p.desc);
+  p.buildS = since(t1);
+  return p;
+}
 
+int runLocal(const RenderOptions& o) {
+  const auto start = Clock::now();
+  Prepared p = prepare(o);
+  const RenderSettings& s = p.settings;
   ProgressBar bar(!o.quiet);
-  s.progress = [&bar](long done, long total) { bar.update(done, total); };
+  p.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
-  const RenderResult r = render(scene, s);
+  const RenderResult r = render(p.scene, s);
   bar.finish();
   if (r.cancelled || gInterrupted) {
     std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
@@ -124,11 +192,76 @@ int runRender(const RenderOptions& o) {
   }
   const auto t2 = Clock::now();
   writeImage(r.image, o.output);
+  if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.load, s.width, s.height);
   const double writeS = since(t2);
-  if (o.stats) printStats(o, s, scene, r, loadS, buildS, writeS);
-  if (!o.quiet && !o.stats) fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, s.width, s.height, since(t0));
+  if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS);
+  if (!o.quiet && !o.stats) fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, s.width, s.height, since(start));
   return 0;
 }
+
+// Testing aids for the MPI backend, read from the environment of every rank:
+//   PVRT_FAIL_RANK=r        rank r fails while loading, as with a bad scene
+//   PVRT_SLOW_RANK=r:ms     rank r sleeps ms milliseconds per work item
+int envInt(const char* name, int fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? std::atoi(v) : fallback;
+}
+
+int runMpi(const RenderOptions& o) {
+  cluster::Session session;
+  const int me = cluster::rank();
+  // Stage 1, local to each rank: anything may fail. Then every rank learns whether any
+  // did, so all stop together with the first message, printed once, instead of hanging.
+  std::optional<Prepared> p;
+  std::string failure;
+  try {
+    p.emplace(prepare(o));
+    if (envInt("PVRT_FAIL_RANK", -1) == me)
+      throw Error(ExitCode::SceneError, fmt::format("rank {}: injected failure (PVRT_FAIL_RANK)", me));
+  } catch (const Error& e) {
+    failure = std::to_string(int(e.code())) + "|" + e.what();
+  } catch (const std::exception& e) {
+    failure = std::to_string(int(ExitCode::Internal)) + "|pvrt: rank " + std::to_string(me) + ": " + e.what();
+  }
+  const std::string first = cluster::firstError(failure);
+  if (!first.empty()) {
+    const size_t bar = first.find('|');
+    if (me == 0) std::fprintf(stderr, "%s\n", first.c_str() + bar + 1);
+    return std::atoi(first.c_str());
+  }
+
+  DistributedSettings d;
+  d.gather = parseGather(o.gatherName);
+  d.masterRenders = o.masterRenders;
+  if (const char* slow = std::getenv("PVRT_SLOW_RANK"); slow && std::strchr(slow, ':')) {
+    d.slowRank = std::atoi(slow);
+    d.slowMillis = std::atoi(std::strchr(slow, ':') + 1);
+  }
+  // Stage 2, collective: a failure here (out of memory) can only end the whole job.
+  DistributedResult r;
+  try {
+    r = renderDistributed(p->scene, p->settings, d);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    cluster::abortAll(int(e.code()));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pvrt: rank %d: %s\n", me, e.what());
+    cluster::abortAll(int(ExitCode::Internal));
+  }
+  if (me != 0) return 0;  // only rank 0 writes
+  const RenderSettings& s = p->settings;
+  const auto t2 = Clock::now();
+  writeImage(r.render.image, o.output);
+  if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.render.load, s.width, s.height);
+  const double writeS = since(t2);
+  if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, r.ranks);
+  if (!o.quiet && !o.stats)
+    fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, s.width, s.height, cluster::size(),
+               r.render.seconds);
+  return 0;
+}
+
+int runRender(const RenderOptions& o) { return o.backendName == "mpi" ? runMpi(o) : runLocal(o); }
 
 }  // namespace
 
@@ -147,8 +280,8 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--aa-depth", o->aaDepth, "POV-Ray's +R n: sets --spp to n*n")->check(CLI::Range(1, 9));
   c->add_option("--sampler", o->samplerName, "Sample pattern: pov, grid or jitter")->capture_default_str();
   c->add_option("--seed", o->seed, "Seed of the jitter sampler");
-  c->add_option("--backend", o->backendName, "serial or openmp")
-      ->check(CLI::IsMember({"serial", "openmp"}))
+  c->add_option("--backend", o->backendName, "serial, openmp or mpi (start with mpirun; OpenMP threads in each rank)")
+      ->check(CLI::IsMember({"serial", "openmp", "mpi"}))
       ->capture_default_str();
   c->add_option("-t,--threads", o->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)")
       ->check(CLI::Range(1, 1024));
@@ -159,6 +292,12 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--tile-size", o->tileSize, "Tile side in pixels for --schedule tiles")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
+  c->add_option("--gather", o->gatherName, "MPI: gather (MPI_Gatherv) or recursive-doubling")
+      ->check(CLI::IsMember({"gather", "recursive-doubling"}))
+      ->capture_default_str();
+  c->add_flag("--master-renders", o->masterRenders, "MPI dynamic: rank 0 also renders tiles between requests");
+  c->add_option("--load-map", o->loadMap,
+                "Write the work per pixel to PREFIX.exr (counts) and PREFIX.png (log-scale false colour)");
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");
   c->add_flag("--stats", o->stats, "Print render statistics (rays by kind, tests, effects, time)");
   c->add_flag("-q,--quiet", o->quiet, "No progress bar or summary line");

@@ -5,7 +5,7 @@ set(PVRT_GOLDEN ${CMAKE_CURRENT_SOURCE_DIR}/golden/golden.sh)
 set(PVRT_MANIFEST ${PROJECT_SOURCE_DIR}/reference/manifest.tsv)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PVRT_MANIFEST})
 set(PVRT_GOLDEN_BACKENDS serial openmp)
-if(TARGET pvrt-mpi)
+if(PVRT_MPIRUN)
   list(APPEND PVRT_GOLDEN_BACKENDS mpi)
 endif()
 # POV-Ray re-renders these references in the test suite (others only when regenerated).

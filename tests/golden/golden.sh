@@ -48,7 +48,7 @@ render)
   case $backend in
     serial) run=("$pvrt" render --backend serial) ;;
     openmp) run=("$pvrt" render --backend openmp --threads 2) ;;
-    mpi) run=(mpirun --allow-run-as-root --oversubscribe -np 3 "$build/pvrt-mpi" render) ;;
+    mpi) run=(mpirun --allow-run-as-root --oversubscribe --bind-to none -np 3 "$pvrt" render --backend mpi --threads 1) ;;
     *) echo "unknown backend $backend"; exit 2 ;;
   esac
   "${run[@]}" "$root/scenes/$scene.xml" -o "$out" -W "$width" -H "$height" --spp "$spp" --sampler pov --quiet || exit 1

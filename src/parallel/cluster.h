@@ -1,0 +1,63 @@
+// The distributed half of the parallel seam: the handful of message-passing operations
+// the MPI backend needs, as plain C++ over std::vector. cluster_mpi.cpp is the only
+// file that knows about MPI; rendering code sees ranks, payloads and a work queue.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pvrt::cluster {
+
+// Starts MPI (thread level FUNNELED: OpenMP threads inside a rank never call MPI) for
+// the lifetime of the object, and finalises it afterwards.
+class Session {
+ public:
+  Session();
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+int rank();
+int size();
+std::string processorName();
+
+// Communication cost of this rank so far: seconds spent in calls and bytes sent.
+struct CommCounters {
+  double seconds = 0;
+  uint64_t bytesSent = 0;
+  uint64_t messages = 0;
+};
+const CommCounters& counters();
+
+// Collective: true on every rank when any rank passes true. Lets all ranks stop
+// together, with one message, when one of them fails (never a hang).
+bool anyFailed(bool failedHere);
+// Collective: the first error text of the lowest failing rank, on every rank.
+std::string firstError(const std::string& mine);
+
+// Collective: waits for every rank; returns the seconds this rank waited (idle time).
+double barrier();
+// Ends every rank of the job at once with `code` (for failures past the agreement points).
+[[noreturn]] void abortAll(int code);
+
+// Collective: rank 0 receives every rank's buffer, concatenated in rank order
+// (MPI_Gatherv: any number of ranks, uneven sizes). Empty on other ranks.
+std::vector<float> gatherv(const std::vector<float>& mine);
+// Collective: rank 0 receives `mine` from every rank (all of the same length).
+std::vector<double> gatherFixed(const std::vector<double>& mine);
+// Point-to-point: sends `mine` to `partner` and returns what it sent (MPI_Sendrecv).
+std::vector<float> exchange(int partner, const std::vector<float>& mine);
+void sendTo(int to, const std::vector<float>& data);
+std::vector<float> receiveFrom(int from);
+
+// The dynamic work queue of the master/worker strategy.
+// Worker side: ask rank 0 for the next item; -1 when there is none left.
+int askForWork();
+// Master side: is a request waiting? Which rank asked (blocks until one does)?
+bool requestPending();
+int takeRequest();
+void assign(int worker, int item);
+
+}  // namespace pvrt::cluster

@@ -1,0 +1,197 @@
+// The only file that knows about MPI.
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+
+#include "core/error.h"
+#include "parallel/cluster.h"
+
+namespace pvrt::cluster {
+
+namespace {
+
+constexpr int kTagRequest = 101;
+constexpr int kTagAssign = 102;
+constexpr int kTagData = 103;
+
+CommCounters gCounters;
+
+// Adds the time of one communication call to the counters.
+class Timed {
+ public:
+  explicit Timed(uint64_t bytes = 0) : t0_(MPI_Wtime()) {
+    gCounters.bytesSent += bytes;
+    if (bytes) ++gCounters.messages;
+  }
+  ~Timed() { gCounters.seconds += MPI_Wtime() - t0_; }
+
+ private:
+  double t0_;
+};
+
+void check(int rc, const char* what) {
+  if (rc != MPI_SUCCESS) throw Error(ExitCode::Internal, std::string("MPI: ") + what + " failed");
+}
+
+}  // namespace
+
+Session::Session() {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (initialised) return;
+  int provided = 0;
+  check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  if (provided < MPI_THREAD_FUNNELED) throw Error(ExitCode::Internal, "MPI: the library lacks MPI_THREAD_FUNNELED");
+  // Errors come back as return codes so that they become pvrt::Error, not a crash.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+}
+
+Session::~Session() {
+  int finalised = 0;
+  MPI_Finalized(&finalised);
+  if (!finalised) MPI_Finalize();
+}
+
+int rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+int size() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+std::string processorName() {
+  char name[MPI_MAX_PROCESSOR_NAME] = {};
+  int len = 0;
+  MPI_Get_processor_name(name, &len);
+  return std::string(name, size_t(len));
+}
+
+const CommCounters& counters() { return gCounters; }
+
+bool anyFailed(bool failedHere) {
+  int mine = failedHere ? 1 : 0, any = 0;
+  check(MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
+  return any != 0;
+}
+
+std::string firstError(const std::string& mine) {
+  // The lowest failing rank broadcasts its message.
+  const int me = rank();
+  int candidate = mine.empty() ? size() : me, first = 0;
+  check(MPI_Allreduce(&candidate, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
+  if (first >= size()) return {};
+  int len = me == first ? int(mine.size()) : 0;
+  MPI_Bcast(&len, 1, MPI_INT, first, MPI_COMM_WORLD);
+  std::string text(size_t(len), '\0');
+  if (me == first) text = mine;
+  MPI_Bcast(text.data(), len, MPI_CHAR, first, MPI_COMM_WORLD);
+  return text;
+}
+
+double barrier() {
+  const double t0 = MPI_Wtime();
+  check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+  return MPI_Wtime() - t0;
+}
+
+void abortAll(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::abort();  // not reached
+}
+
+std::vector<float> gatherv(const std::vector<float>& mine) {
+  Timed timed(mine.size() * sizeof(float));
+  const int n = size(), me = rank();
+  int count = int(mine.size());
+  std::vector<int> counts(size_t(me == 0 ? n : 0)), displs;
+  check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
+  std::vector<float> all;
+  if (me == 0) {
+    displs.assign(size_t(n), 0);
+    long total = 0;
+    for (int r = 0; r < n; ++r) {
+      displs[size_t(r)] = int(total);
+      total += counts[size_t(r)];
+    }
+    all.resize(size_t(total));
+  }
+  check(MPI_Gatherv(mine.data(), count, MPI_FLOAT, all.data(), counts.data(), displs.data(), MPI_FLOAT, 0,
+                    MPI_COMM_WORLD),
+        "MPI_Gatherv");
+  return all;
+}
+
+std::vector<double> gatherFixed(const std::vector<double>& mine) {
+  Timed timed(mine.size() * sizeof(double));
+  std::vector<double> all(rank() == 0 ? mine.size() * size_t(size()) : 0);
+  check(MPI_Gather(mine.data(), int(mine.size()), MPI_DOUBLE, all.data(), int(mine.size()), MPI_DOUBLE, 0,
+                   MPI_COMM_WORLD),
+        "MPI_Gather");
+  return all;
+}
+
+std::vector<float> exchange(int partner, const std::vector<float>& mine) {
+  Timed timed(mine.size() * sizeof(float));
+  int count = int(mine.size()), theirs = 0;
+  check(MPI_Sendrecv(&count, 1, MPI_INT, partner, kTagData, &theirs, 1, MPI_INT, partner, kTagData, MPI_COMM_WORLD,
+                     MPI_STATUS_IGNORE),
+        "MPI_Sendrecv");
+  std::vector<float> in(static_cast<size_t>(theirs));
+  check(MPI_Sendrecv(mine.data(), count, MPI_FLOAT, partner, kTagData, in.data(), theirs, MPI_FLOAT, partner,
+                     kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+        "MPI_Sendrecv");
+  return in;
+}
+
+void sendTo(int to, const std::vector<float>& data) {
+  Timed timed(data.size() * sizeof(float));
+  int count = int(data.size());
+  check(MPI_Send(&count, 1, MPI_INT, to, kTagData, MPI_COMM_WORLD), "MPI_Send");
+  check(MPI_Send(data.data(), count, MPI_FLOAT, to, kTagData, MPI_COMM_WORLD), "MPI_Send");
+}
+
+std::vector<float> receiveFrom(int from) {
+  Timed timed;
+  int count = 0;
+  check(MPI_Recv(&count, 1, MPI_INT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+  std::vector<float> data(static_cast<size_t>(count));
+  check(MPI_Recv(data.data(), count, MPI_FLOAT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+  return data;
+}
+
+int askForWork() {
+  Timed timed(sizeof(int));
+  int dummy = 0, item = -1;
+  check(MPI_Send(&dummy, 1, MPI_INT, 0, kTagRequest, MPI_COMM_WORLD), "MPI_Send");
+  check(MPI_Recv(&item, 1, MPI_INT, 0, kTagAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+  return item;
+}
+
+bool requestPending() {
+  Timed timed;
+  int flag = 0;
+  check(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
+  return flag != 0;
+}
+
+int takeRequest() {
+  Timed timed;
+  int dummy = 0;
+  MPI_Status status;
+  check(MPI_Recv(&dummy, 1, MPI_INT, MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &status), "MPI_Recv");
+  return status.MPI_SOURCE;
+}
+
+void assign(int worker, int item) {
+  Timed timed(sizeof(int));
+  check(MPI_Send(&item, 1, MPI_INT, worker, kTagAssign, MPI_COMM_WORLD), "MPI_Send");
+}
+
+}  // namespace pvrt::cluster

@@ -1,0 +1,250 @@
+#include "render/distributed.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "core/error.h"
+#include "parallel/cluster.h"
+#include "render/kernel.h"
+
+namespace pvrt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr int kFloatsPerPixel = 4;  // R, G, B, work
+
+// Renders some of the plan's items on this rank, with its OpenMP threads over rows.
+class RankRenderer {
+ public:
+  RankRenderer(const Scene& scene, const RenderSettings& s, const WorkPlan& plan)
+      : scene_(scene), s_(s), plan_(plan), sampler_(s.sampler), kernel_(kernelFor(scene.effects)),
+        image_(s.width, s.height), load_(size_t(s.width) * s.height, 0.0f),
+        threads_(s.threads > 0 ? s.threads : defaultThreadCount()), perThread_(size_t(threads_)) {}
+
+  void render(const std::vector<int>& items) {
+    // The rows of these items, handed to the rank's threads one at a time.
+    WorkPlan rows;
+    rows.strategy = Strategy::Tiles;
+    for (int i : items) {
+      const WorkItem& it = plan_.items[size_t(i)];
+      for (int y = it.y0; y < it.y1; ++y) rows.items.push_back({it.x0, y, it.x1, y + 1});
+    }
+    const auto t0 = Clock::now();
+    parallelFor(Backend::OpenMP, threads_, rows, [&](size_t r, int worker) {
+      kernel_(scene_, sampler_, rows.items[r], image_, load_.data(), perThread_[size_t(worker)].counts);
+    });
+    compute_ += secondsSince(t0);
+    for (int i : items) {
+      mine_.push_back(i);
+      pixels_ += plan_.items[size_t(i)].pixels();
+    }
+  }
+
+  // This rank's share as a self-describing payload: [n, item indices..., pixel data...].
+  std::vector<float> payload() const {
+    std::vector<float> out;
+    out.push_back(float(mine_.size()));
+    for (int i : mine_) out.push_back(float(i));  // exact: fewer than 2^24 items
+    for (int i : mine_) {
+      const WorkItem& it = plan_.items[size_t(i)];
+      for (int y = it.y0; y < it.y1; ++y)
+        for (int x = it.x0; x < it.x1; ++x) {
+          const float* p = image_.row(y) + size_t(x) * 3;
+          out.insert(out.end(), {p[0], p[1], p[2], load_[size_t(y) * s_.width + x]});
+        }
+    }
+    return out;
+  }
+
+  RenderStats counts() const {
+    RenderStats t;
+    for (const WorkerStats& w : perThread_) t += w.counts;
+    return t;
+  }
+  double computeSeconds() const { return compute_; }
+  long pixels() const { return pixels_; }
+  long items() const { return long(mine_.size()); }
+
+ private:
+  const Scene& scene_;
+  const RenderSettings& s_;
+  const WorkPlan& plan_;
+  PixelSampler sampler_;
+  RectKernel kernel_;
+  Image image_;
+  std::vector<float> load_;
+  int threads_;
+  std::vector<WorkerStats> perThread_;
+  std::vector<int> mine_;
+  double compute_ = 0;
+  long pixels_ = 0;
+};
+
+// Unpacks concatenated payloads into the image and load map.
+void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r, int width) {
+  size_t at = 0;
+  while (at < all.size()) {
+    const size_t n = size_t(all[at++]);
+    const size_t firstIndex = at;
+    at += n;
+    for (size_t k = 0; k < n; ++k) {
+      const WorkItem& it = plan.items[size_t(all[firstIndex + k])];
+      for (int y = it.y0; y < it.y1; ++y)
+        for (int x = it.x0; x < it.x1; ++x) {
+          float* p = r.image.row(y) + size_t(x) * 3;
+          p[0] = all[at];
+          p[1] = all[at + 1];
+          p[2] = all[at + 2];
+          if (!r.load.empty()) r.load[size_t(y) * width + x] = all[at + 3];
+          at += kFloatsPerPixel;
+        }
+    }
+  }
+}
+
+// Recursive doubling towards rank 0, correct for any number of ranks: ranks beyond the
+// largest power of two first hand their share to a partner inside it; then, in round k,
+// rank r swaps everything it holds with rank r xor 2^k.
+std::vector<float> recursiveDoubling(std::vector<float> held) {
+  const int me = cluster::rank(), n = cluster::size();
+  int p2 = 1;
+  while (p2 * 2 <= n) p2 *= 2;
+  if (me >= p2) {
+    cluster::sendTo(me - p2, held);
+    return {};
+  }
+  if (me + p2 < n) {
+    const std::vector<float> extra = cluster::receiveFrom(me + p2);
+    held.insert(held.end(), extra.begin(), extra.end());
+  }
+  for (int mask = 1; mask < p2; mask <<= 1) {
+    const std::vector<float> theirs = cluster::exchange(me ^ mask, held);
+    held.insert(held.end(), theirs.begin(), theirs.end());
+  }
+  return me == 0 ? held : std::vector<float>{};
+}
+
+void maybeSlow(const DistributedSettings& d) {
+  if (d.slowRank == cluster::rank() && d.slowMillis > 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(d.slowMillis));
+}
+
+}  // namespace
+
+const char* gatherName(GatherMethod g) { return g == GatherMethod::Gatherv ? "gather" : "recursive-doubling"; }
+
+GatherMethod parseGather(const std::string& name) {
+  if (name == "gather") return GatherMethod::Gatherv;
+  if (name == "recursive-doubling") return GatherMethod::RecursiveDoubling;
+  throw Error(ExitCode::Usage, "unknown gather \"" + name + "\" (use gather or recursive-doubling)");
+}
+
+DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s, const DistributedSettings& d) {
+  const auto t0 = Clock::now();
+  const int me = cluster::rank(), n = cluster::size();
+  const Strategy strategy = s.schedule.strategy;
+  if (strategy != Strategy::Block && strategy != Strategy::Cyclic && strategy != Strategy::Tiles &&
+      strategy != Strategy::Dynamic)
+    throw Error(ExitCode::Usage, std::string("schedule ") + strategyName(strategy) +
+                                     " is an OpenMP schedule; with --backend mpi use block, cyclic, tiles or dynamic");
+  // Block and cyclic own rows per rank; tiles (static) deal tiles round robin; dynamic
+  // hands the same tiles out on demand.
+  ScheduleSettings cut = s.schedule;
+  if (strategy == Strategy::Dynamic) cut.strategy = Strategy::Tiles;
+  const WorkPlan plan = makeWorkPlan(cut, s.width, s.height, n);
+
+  RankRenderer local(scene, s, plan);
+  const double commBefore = cluster::counters().seconds;
+  if (strategy == Strategy::Dynamic) {
+    const int items = int(plan.items.size());
+    if (me == 0) {
+      int next = 0, working = n - 1;
+      const bool renders = d.masterRenders || n == 1;
+      while (working > 0 || (renders && next < items)) {
+        if (renders && next < items && (working == 0 || !cluster::requestPending())) {
+          maybeSlow(d);
+          local.render({next++});
+          continue;
+        }
+        const int worker = cluster::takeRequest();
+        if (next < items) {
+          cluster::assign(worker, next++);
+        } else {
+          cluster::assign(worker, -1);
+          --working;
+        }
+      }
+    } else {
+      for (int item = cluster::askForWork(); item >= 0; item = cluster::askForWork()) {
+        maybeSlow(d);
+        local.render({item});
+      }
+    }
+  } else {
+    std::vector<int> mine;
+    for (size_t i = 0; i < plan.items.size(); ++i) {
+      const int owner = plan.owner.empty() ? int(i % size_t(n)) : plan.owner[i];
+      if (owner == me) mine.push_back(int(i));
+    }
+    if (d.slowRank == me)
+      for (size_t k = 0; k < mine.size(); ++k) maybeSlow(d);
+    local.render(mine);
+  }
+  const double idle = cluster::barrier();  // waiting here is load imbalance, not communication
+
+  const std::vector<float> share = local.payload();
+  const std::vector<float> all =
+      d.gather == GatherMethod::Gatherv ? cluster::gatherv(share) : recursiveDoubling(share);
+
+  RankStats mineStats;
+  mineStats.computeSeconds = local.computeSeconds();
+  mineStats.commSeconds = cluster::counters().seconds - commBefore;
+  mineStats.idleSeconds = idle;
+  mineStats.wallSeconds = secondsSince(t0);
+  const RenderStats c = local.counts();
+  const std::vector<double> packed = {mineStats.computeSeconds, mineStats.commSeconds, mineStats.idleSeconds,
+                                      mineStats.wallSeconds, double(local.items()), double(local.pixels()),
+                                      double(c.primaryRays), double(c.shadowRays), double(c.reflectedRays),
+                                      double(c.refractedRays), double(c.transmittedRays),
+                                      double(c.intersectionTests), double(c.shadingOps),
+                                      double(cluster::counters().bytesSent)};
+  const std::vector<double> gathered = cluster::gatherFixed(packed);
+
+  DistributedResult out;
+  if (me != 0) return out;
+  RenderResult& r = out.render;
+  r.image = Image(s.width, s.height);
+  if (s.loadMap) r.load.assign(size_t(s.width) * s.height, 0.0f);
+  unpack(all, plan, r, s.width);
+  r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);
+  const size_t k = packed.size();
+  for (int rank = 0; rank < n; ++rank) {
+    const double* g = gathered.data() + size_t(rank) * k;
+    RankStats rs;
+    rs.computeSeconds = g[0];
+    rs.commSeconds = g[1];
+    rs.idleSeconds = g[2];
+    rs.wallSeconds = g[3];
+    rs.items = long(g[4]);
+    rs.pixels = long(g[5]);
+    rs.counts = {uint64_t(g[6]), uint64_t(g[7]), uint64_t(g[8]), uint64_t(g[9]), uint64_t(g[10]), uint64_t(g[11]),
+                 uint64_t(g[12])};
+    rs.bytesSent = g[13];
+    r.totals += rs.counts;
+    WorkerStats ws;
+    ws.counts = rs.counts;
+    ws.seconds = rs.computeSeconds;
+    ws.pixels = rs.pixels;
+    r.workers.push_back(ws);
+    out.ranks.push_back(rs);
+  }
+  r.seconds = secondsSince(t0);
+  return out;
+}
+
+}  // namespace pvrt

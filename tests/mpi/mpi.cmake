@@ -1,0 +1,25 @@
+# The MPI backend under real mpirun (label mpi): bit-identical to serial for 1-4 ranks,
+# every strategy and gather, hybrid MPI+OpenMP, an injected failure, a slowed rank.
+find_program(PVRT_MPIRUN mpirun)
+if(NOT PVRT_MPIRUN)
+  message(WARNING "mpirun not found: MPI tests disabled")
+  return()
+endif()
+set(PVRT_MPI_CHECK ${CMAKE_CURRENT_SOURCE_DIR}/mpi/mpi_check.sh)
+set(PVRT_MPI_SCENE ${PROJECT_SOURCE_DIR}/scenes/paper1.xml)
+foreach(np 1 2 3 4)
+  foreach(schedule block cyclic tiles dynamic)
+    foreach(gather gather recursive-doubling)
+      set(name mpi.identical.np${np}.${schedule}.${gather})
+      add_test(NAME ${name} COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE}
+                                    ${np} ${schedule} ${gather})
+      set_tests_properties(${name} PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
+    endforeach()
+  endforeach()
+endforeach()
+add_test(NAME mpi.hybrid.np2.threads2 COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR}
+                                             ${PVRT_MPI_SCENE} 2 cyclic recursive-doubling 2)
+add_test(NAME mpi.failure_on_one_rank COMMAND ${PVRT_MPI_CHECK} failure ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
+add_test(NAME mpi.dynamic_slow_rank COMMAND ${PVRT_MPI_CHECK} slow ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
+set_tests_properties(mpi.hybrid.np2.threads2 mpi.failure_on_one_rank mpi.dynamic_slow_rank
+                     PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
