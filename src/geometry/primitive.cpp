@@ -175,8 +175,9 @@ std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, d
 
 // ---------------------------------------------------------------- triangles
 
-// Watertight ray-triangle test (Woop, Benthin and Wald 2013): rays through a shared
-// edge or vertex hit exactly one of the triangles that meet there, so meshes never leak.
+// Watertight ray-triangle test (Woop, Benthin and Wald 2013): a ray through a shared
+// edge or vertex hits at least one of the triangles that meet there (both, at the same
+// t, when its edge value is exactly 0), so meshes never leak.
 std::optional<ShapeHit> hitTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Ray& ray,
                                     double lo, double hi) {
   const Vec3& d = ray.dir;

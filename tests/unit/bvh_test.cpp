@@ -1,0 +1,349 @@
+// The BVH must be an invisible speed-up: for any ray it finds exactly the hit a loop over
+// every primitive finds, while testing only a handful of primitives per ray.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "accel/bvh.h"
+
+namespace pvrt {
+namespace {
+
+// A primitive of shape `s` that came from object `object`.
+Primitive make(const Shape& s, uint32_t object) {
+  Primitive p;
+  p.shape = s;
+  p.object = object;
+  return p;
+}
+
+// Random scenes with a fixed seed so failures reproduce.
+class SceneMaker {
+ public:
+  explicit SceneMaker(uint64_t seed) : rng_(seed) {}
+
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  Vec3 point(double half) { return {uniform(-half, half), uniform(-half, half), uniform(-half, half)}; }
+  // Uniform on the unit sphere (normalised Gaussian).
+  Vec3 direction() {
+    std::normal_distribution<double> g;
+    Vec3 d;
+    do d = {g(rng_), g(rng_), g(rng_)};
+    while (length(d) < 1e-6);
+    return normalize(d);
+  }
+  // `n` spheres in the cube [-half, half]^3, each primitive's object index its position.
+  std::vector<Primitive> spheres(size_t n, double half, double rMin, double rMax) {
+    std::vector<Primitive> prims;
+    prims.reserve(n);
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3 c = point(half);
+      prims.push_back(make(SphereShape{c, uniform(rMin, rMax)}, uint32_t(i)));
+    }
+    return prims;
+  }
+  Ray ray(double half) { return {point(half), direction()}; }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+struct Found {
+  bool hit = false;
+  double t = 0;
+  uint32_t object = 0;
+};
+
+// The reference answer: every primitive tested, nearest kept.
+Found bruteForce(const std::vector<Primitive>& prims, const Ray& r, double tMin, double tMax,
+                 bool skipNoShadow = false) {
+  Found f;
+  double best = tMax;
+  for (const Primitive& p : prims) {
+    if (skipNoShadow && p.noShadow) continue;
+    if (auto h = p.intersect(r, tMin, best)) {
+      best = h->t;
+      f = {true, h->t, p.object};
+    }
+  }
+  return f;
+}
+
+Found viaBvh(const Bvh& bvh, const Ray& r, double tMin, double tMax, uint64_t& tests,
+             bool skipNoShadow = false) {
+  const auto h = bvh.closest(r, tMin, tMax, tests, skipNoShadow);
+  if (!h) return {};
+  return {true, h->hit.t, bvh.primitives()[h->primitive].object};
+}
+
+// Compares BVH and brute force on `rays` random rays; returns how many hit something.
+int compareOnRandomRays(const std::vector<Primitive>& prims, SceneMaker& gen, int rays, double half) {
+  const Bvh bvh(prims);
+  int hits = 0;
+  uint64_t tests = 0;
+  for (int i = 0; i < rays; ++i) {
+    const Ray r = gen.ray(half);
+    const Found want = bruteForce(prims, r, kMinIsectDepth, kMaxDistance);
+    const Found got = viaBvh(bvh, r, kMinIsectDepth, kMaxDistance, tests);
+    EXPECT_EQ(got.hit, want.hit) << "ray " << i;
+    if (got.hit && want.hit) {
+      // Same primitive, same arithmetic: the distance must agree to the last bit.
+      EXPECT_EQ(got.object, want.object) << "ray " << i;
+      EXPECT_EQ(got.t, want.t) << "ray " << i;
+    }
+    hits += want.hit;
+  }
+  return hits;
+}
+
+// 2,000 spheres in a 20-unit cube, 5,000 rays starting anywhere (inside spheres too).
+TEST(Bvh, ClosestMatchesBruteForceOnRandomSpheres) {
+  SceneMaker gen(0x5eed'0001);
+  const auto prims = gen.spheres(2000, 10, 0.05, 0.6);
+  const int hits = compareOnRandomRays(prims, gen, 5000, 12);
+  // The test means something only if many rays hit and some miss.
+  EXPECT_GT(hits, 1000);
+  EXPECT_LT(hits, 5000);
+}
+
+// Sizes around the leaf size and tiny scenes exercise the build's edge cases.
+TEST(Bvh, ClosestMatchesBruteForceForSmallScenes) {
+  SceneMaker gen(0x5eed'0002);
+  for (size_t n : {1u, 2u, 3u, 4u, 5u, 7u, 16u, 33u}) {
+    SCOPED_TRACE(n);
+    const auto prims = gen.spheres(n, 3, 0.3, 1.5);
+    const int hits = compareOnRandomRays(prims, gen, 500, 4);
+    EXPECT_GT(hits, 0);
+  }
+}
+
+// A mixture of every bounded shape, some transformed, plus a plane under everything.
+TEST(Bvh, ClosestMatchesBruteForceOnMixedShapesAndAPlane) {
+  SceneMaker gen(0x5eed'0003);
+  std::vector<Primitive> prims;
+  for (uint32_t i = 0; i < 600; ++i) {
+    const Vec3 c = gen.point(10);
+    const double r = gen.uniform(0.1, 0.8);
+    Shape s;
+    switch (i % 7) {
+      case 0: s = SphereShape{c, r}; break;
+      case 1: s = BoxShape{c - Vec3(r), c + Vec3{r, 2 * r, r}}; break;
+      case 2: s = CylinderShape{c, c + gen.direction() * (2 * r), r / 2, i % 2 == 0}; break;
+      case 3: s = ConeShape{c, r, c + gen.direction() * (2 * r), r / 3, false}; break;
+      case 4: s = DiscShape{c, gen.direction(), r * r, r * r / 4}; break;
+      case 5: s = makeTriangle(c, c + gen.direction() * r, c + gen.direction() * r); break;
+      default:
+        s = makeSmoothTriangle(c, gen.direction(), c + gen.direction() * r, gen.direction(),
+                               c + gen.direction() * r, gen.direction());
+    }
+    Primitive p = make(s, i);
+    if (i % 5 == 0) {  // a sphere at the origin, scaled, rotated and moved to c
+      p.shape = SphereShape{{0, 0, 0}, r};
+      p.transform = Transform::from(Affine::scale({1, 0.5, 2}).then(Affine::rotate({10, 20, 30})).then(
+          Affine::translate(c)));
+    }
+    prims.push_back(p);
+  }
+  prims.push_back(make(PlaneShape{{0, 1, 0}, -11}, 600));
+  const int hits = compareOnRandomRays(prims, gen, 5000, 10);
+  EXPECT_GT(hits, 2000);  // roughly half of the rays point down at the floor
+}
+
+// Planes have no bounds: they live outside the tree and are tested on every ray. A ray
+// that misses every sphere still finds the plane y=-20, 20 units below the origin.
+TEST(Bvh, UnboundedPlanesAreStillFound) {
+  SceneMaker gen(0x5eed'0004);
+  auto prims = gen.spheres(100, 5, 0.1, 0.5);
+  prims.push_back(make(PlaneShape{{0, 1, 0}, -20}, 777));
+  const Bvh bvh(prims);
+  EXPECT_EQ(bvh.primitives().size(), 101u);
+  uint64_t tests = 0;
+  const Found f = viaBvh(bvh, {{50, 0, 50}, {0, -1, 0}}, kMinIsectDepth, kMaxDistance, tests);
+  ASSERT_TRUE(f.hit);
+  EXPECT_EQ(f.object, 777u);
+  EXPECT_DOUBLE_EQ(f.t, 20.0);
+
+  // A scene of planes only: no tree at all, still found, the nearer one first.
+  const Bvh planes(std::vector<Primitive>{make(PlaneShape{{0, 0, 1}, 5}, 0), make(PlaneShape{{0, 0, 1}, 3}, 1)});
+  EXPECT_EQ(planes.stats().nodes, 0u);
+  const Found g = viaBvh(planes, {{0, 0, 0}, {0, 0, 1}}, kMinIsectDepth, kMaxDistance, tests);
+  ASSERT_TRUE(g.hit);
+  EXPECT_EQ(g.object, 1u);
+  EXPECT_DOUBLE_EQ(g.t, 3.0);
+}
+
+// Two spheres on the z axis; the nearer (z=5) is no_shadow. Shadow queries pass through
+// it to the farther one (z=10), ordinary queries stop at it.
+TEST(Bvh, SkipNoShadowIgnoresNoShadowPrimitives) {
+  Primitive nearSphere = make(SphereShape{{0, 0, 5}, 1}, 0);
+  nearSphere.noShadow = true;
+  const Primitive farSphere = make(SphereShape{{0, 0, 10}, 1}, 1);
+  Primitive plane = make(PlaneShape{{0, 0, -1}, -20}, 2);  // z = 20, also no_shadow
+  plane.noShadow = true;
+  const Bvh bvh(std::vector<Primitive>{nearSphere, farSphere, plane});
+  const Ray r{{0, 0, 0}, {0, 0, 1}};
+  uint64_t tests = 0;
+  const Found normal = viaBvh(bvh, r, kMinIsectDepth, kMaxDistance, tests);
+  ASSERT_TRUE(normal.hit);
+  EXPECT_EQ(normal.object, 0u);
+  EXPECT_DOUBLE_EQ(normal.t, 4.0);
+  const Found shadow = viaBvh(bvh, r, kMinIsectDepth, kMaxDistance, tests, true);
+  ASSERT_TRUE(shadow.hit);
+  EXPECT_EQ(shadow.object, 1u);
+  EXPECT_DOUBLE_EQ(shadow.t, 9.0);
+  // Beyond the far sphere only no_shadow things remain.
+  EXPECT_FALSE(viaBvh(bvh, {{0, 0, 12}, {0, 0, 1}}, kMinIsectDepth, kMaxDistance, tests, true).hit);
+  EXPECT_TRUE(viaBvh(bvh, {{0, 0, 12}, {0, 0, 1}}, kMinIsectDepth, kMaxDistance, tests).hit);
+
+  // And on a random scene with every third sphere no_shadow, against brute force.
+  SceneMaker gen(0x5eed'0005);
+  auto prims = gen.spheres(1500, 10, 0.1, 0.7);
+  for (size_t i = 0; i < prims.size(); i += 3) prims[i].noShadow = true;
+  const Bvh big(prims);
+  for (int i = 0; i < 3000; ++i) {
+    const Ray q = gen.ray(12);
+    const Found want = bruteForce(prims, q, kMinIsectDepth, kMaxDistance, true);
+    const Found got = viaBvh(big, q, kMinIsectDepth, kMaxDistance, tests, true);
+    ASSERT_EQ(got.hit, want.hit) << "ray " << i;
+    if (want.hit) {
+      EXPECT_EQ(got.object, want.object) << "ray " << i;
+      EXPECT_EQ(got.t, want.t) << "ray " << i;
+      EXPECT_NE(got.object % 3, 0u) << "a no_shadow sphere was returned";
+    }
+  }
+}
+
+// tMax limits the search (a shadow ray stops at its light): the sphere at t=4 is found
+// with tMax 4.5 but not with tMax 3.5; tMin above it finds the plane behind instead.
+TEST(Bvh, RespectsTMinAndTMax) {
+  const Bvh bvh(std::vector<Primitive>{make(SphereShape{{0, 0, 5}, 1}, 0), make(PlaneShape{{0, 0, 1}, 8}, 1)});
+  const Ray r{{0, 0, 0}, {0, 0, 1}};
+  uint64_t tests = 0;
+  EXPECT_TRUE(viaBvh(bvh, r, kMinIsectDepth, 4.5, tests).hit);
+  EXPECT_FALSE(viaBvh(bvh, r, kMinIsectDepth, 3.5, tests).hit);
+  const Found behind = viaBvh(bvh, r, 6.5, kMaxDistance, tests);
+  ASSERT_TRUE(behind.hit);
+  EXPECT_EQ(behind.object, 1u);
+  EXPECT_DOUBLE_EQ(behind.t, 8.0);
+}
+
+TEST(Bvh, EmptyBvhFindsNothing) {
+  const Ray r{{0, 0, 0}, {0, 0, 1}};
+  uint64_t tests = 0;
+  const Bvh defaulted;
+  EXPECT_FALSE(defaulted.closest(r, kMinIsectDepth, kMaxDistance, tests));
+  const Bvh built{std::vector<Primitive>{}};
+  EXPECT_FALSE(built.closest(r, kMinIsectDepth, kMaxDistance, tests));
+  EXPECT_EQ(tests, 0u);
+  EXPECT_EQ(built.stats().nodes, 0u);
+  EXPECT_EQ(built.stats().leaves, 0u);
+  EXPECT_TRUE(built.primitives().empty());
+}
+
+// Building reorders the primitives, but keeps every one of them exactly once.
+TEST(Bvh, ReorderingKeepsEveryPrimitive) {
+  SceneMaker gen(0x5eed'0006);
+  auto prims = gen.spheres(1000, 10, 0.1, 0.5);
+  prims.push_back(make(PlaneShape{{0, 1, 0}, 0}, 1000));
+  const Bvh bvh(prims);
+  std::vector<uint32_t> objects;
+  for (const Primitive& p : bvh.primitives()) objects.push_back(p.object);
+  // The bounded ones come first, the plane last.
+  EXPECT_EQ(objects.back(), 1000u);
+  std::sort(objects.begin(), objects.end());
+  for (uint32_t i = 0; i < objects.size(); ++i) ASSERT_EQ(objects[i], i);
+}
+
+// The whole point: with 100,000 spheres a ray costs on the order of log(N) primitive
+// tests, not N. The spheres are dense enough that most rays hit one (so rays do not just
+// skim past the root box). We demand an average below 1% of N (1,000 tests) and, more
+// tellingly, below 3 log2(N) (about 50); and the answers must agree with brute force.
+TEST(Bvh, IntersectionTestsGrowFarSlowerThanThePrimitiveCount) {
+  SceneMaker gen(0x5eed'0007);
+  constexpr size_t kN = 100000;
+  const auto prims = gen.spheres(kN, 50, 0.2, 1.5);
+  const Bvh bvh(prims);
+  constexpr int kRays = 2000;
+  uint64_t tests = 0;
+  int hits = 0;
+  for (int i = 0; i < kRays; ++i) {
+    const Ray r = gen.ray(60);
+    const Found got = viaBvh(bvh, r, kMinIsectDepth, kMaxDistance, tests);
+    hits += got.hit;
+    if (i % 20 == 0) {  // brute force on 100 of the rays (each costs N tests)
+      const Found want = bruteForce(prims, r, kMinIsectDepth, kMaxDistance);
+      ASSERT_EQ(got.hit, want.hit) << "ray " << i;
+      if (want.hit) {
+        EXPECT_EQ(got.object, want.object) << "ray " << i;
+      }
+    }
+  }
+  const double perRay = double(tests) / kRays;
+  EXPECT_LT(perRay, 0.01 * kN) << "average tests per ray";
+  EXPECT_LT(perRay, 3 * std::log2(double(kN))) << "average tests per ray";
+  EXPECT_GT(perRay, 0.0);
+  EXPECT_GT(hits, kRays / 2);
+  // At the same density, 1,000 spheres cost about as much per ray as 100,000: 100x the
+  // primitives must not multiply the cost by anything like 100.
+  SceneMaker small(0x5eed'0008);
+  const double smallHalf = 50 / std::cbrt(100.0);
+  const Bvh few(small.spheres(1000, smallHalf, 0.2, 1.5));
+  uint64_t fewTests = 0;
+  for (int i = 0; i < kRays; ++i)
+    viaBvh(few, small.ray(1.2 * smallHalf), kMinIsectDepth, kMaxDistance, fewTests);
+  const double fewPerRay = double(fewTests) / kRays;
+  EXPECT_GT(fewPerRay, 0.0);
+  EXPECT_LT(perRay, 10 * fewPerRay) << "100x the primitives, " << perRay / fewPerRay << "x the tests";
+}
+
+// A binary tree with L leaves has 2L-1 nodes; with at most a few primitives per leaf
+// there are at least N/4 leaves, and a balanced-ish tree is at least log2(N/4) deep but
+// nowhere near N deep (and within the traversal stack of 64).
+TEST(Bvh, StatsDescribeTheTree) {
+  SceneMaker gen(0x5eed'0009);
+  constexpr size_t kN = 10000;
+  const Bvh bvh(gen.spheres(kN, 20, 0.05, 0.3));
+  const BvhStats& s = bvh.stats();
+  EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
+  EXPECT_GE(s.leaves, kN / 4);
+  EXPECT_LE(s.leaves, kN);
+  EXPECT_GE(s.maxDepth, int(std::log2(double(kN) / 4)));
+  EXPECT_LE(s.maxDepth, 64);
+  EXPECT_GE(s.bytes, s.nodes * sizeof(BvhNode) + kN * sizeof(Primitive));
+  EXPECT_GE(s.buildSeconds, 0.0);
+
+  // One primitive: a single leaf, depth 1.
+  const Bvh one(gen.spheres(1, 1, 0.5, 0.5));
+  EXPECT_EQ(one.stats().nodes, 1u);
+  EXPECT_EQ(one.stats().leaves, 1u);
+  EXPECT_EQ(one.stats().maxDepth, 1);
+}
+
+// 5,000 identical spheres share one centroid, so no SAH split exists; the build must
+// still split them (not one 5,000-primitive leaf, not a 5,000-deep chain) and find them.
+TEST(Bvh, CoincidentCentroidsStillBuildABalancedTree) {
+  std::vector<Primitive> prims;
+  for (uint32_t i = 0; i < 5000; ++i) {
+    prims.push_back(make(SphereShape{{1, 2, 3}, 0.5 + 0.0001 * i}, i));
+  }
+  const Bvh bvh(prims);
+  EXPECT_LE(bvh.stats().maxDepth, 20);  // halving 5,000 down to leaves of <= 4: ~11 levels
+  EXPECT_GE(bvh.stats().leaves, 5000u / 4);
+  uint64_t tests = 0;
+  // From the centre every sphere is hit from inside; the smallest (object 0) is nearest.
+  const Found f = viaBvh(bvh, {{1, 2, 3}, {1, 0, 0}}, kMinIsectDepth, kMaxDistance, tests);
+  ASSERT_TRUE(f.hit);
+  EXPECT_EQ(f.object, 0u);
+  EXPECT_DOUBLE_EQ(f.t, 0.5);
+  // From outside, the largest (object 4999, radius 0.9999) is hit first: 10 - 0.9999.
+  const Found g = viaBvh(bvh, {{-9, 2, 3}, {1, 0, 0}}, kMinIsectDepth, kMaxDistance, tests);
+  ASSERT_TRUE(g.hit);
+  EXPECT_EQ(g.object, 4999u);
+  EXPECT_NEAR(g.t, 10 - 0.9999, 1e-12);
+}
+
+}  // namespace
+}  // namespace pvrt
