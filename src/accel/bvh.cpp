@@ -179,6 +179,45 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
   stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const {
+  bool transparent = false;
+  auto test = [&](uint32_t i) {  // true: blocked
+    const Primitive& p = prims_[i];
+    if (p.noShadow) return false;
+    ++tests;
+    if (!p.intersect(ray, tMin, tMax)) return false;
+    if (p.opaque) {
+      blocker = i;
+      return true;
+    }
+    transparent = true;
+    return false;
+  };
+  if (!nodes_.empty()) {
+    const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
+    uint32_t stack[64];
+    int top = 0;
+    uint32_t node = 0;
+    for (;;) {
+      const BvhNode& n = nodes_[node];
+      if (hitsBox(n.bounds, ray.origin, inv, tMin, tMax)) {
+        if (n.count == 0) {
+          stack[top++] = n.rightOrFirst;
+          node = node + 1;
+          continue;
+        }
+        for (uint32_t i = n.rightOrFirst; i < n.rightOrFirst + n.count; ++i)
+          if (test(i)) return Occlusion::Blocked;
+      }
+      if (top == 0) break;
+      node = stack[--top];
+    }
+  }
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+    if (test(i)) return Occlusion::Blocked;
+  return transparent ? Occlusion::Transparent : Occlusion::Clear;
+}
+
 std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
                                        bool skipNoShadow) const {
   std::optional<ClosestHit> best;

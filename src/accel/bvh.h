@@ -33,6 +33,9 @@ struct ClosestHit {
   uint32_t primitive = 0;
 };
 
+// What a shadow segment meets, in no particular order.
+enum class Occlusion { Clear, Blocked, Transparent };
+
 class Bvh {
  public:
   Bvh() = default;
@@ -46,6 +49,12 @@ class Bvh {
   // intersection tests performed; `skipNoShadow` ignores no_shadow objects.
   std::optional<ClosestHit> closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
                                     bool skipNoShadow = false) const;
+
+  // The cheap query for shadow rays (no_shadow primitives ignored): Blocked as soon as
+  // any opaque primitive is hit in (tMin, tMax), else Transparent when only see-through
+  // ones are, else Clear. No nearest-hit ordering, so traversal stops early.
+  // `blocker` receives the opaque primitive found.
+  Occlusion occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const;
 
  private:
   std::vector<Primitive> prims_;  // bounded ones first, then unbounded

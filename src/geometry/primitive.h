@@ -46,6 +46,7 @@ struct Primitive {
   uint32_t material = 0;
   uint32_t object = 0;  // index of the ObjectDesc it came from (meshes give many primitives)
   bool noShadow = false;
+  bool opaque = true;  // its material lets no light through: a shadow ray hitting it is blocked
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;

@@ -18,6 +18,7 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
   for (int y = rect.y0; y < rect.y1; ++y) {
     for (int x = rect.x0; x < rect.x1; ++x) {
       const uint64_t before = stats.work();
+      tracer.beginPixel();
       sampler.offsets(x, y, offsets);
       Color sum;
       for (const SubSample& s : offsets) {

@@ -150,6 +150,7 @@ Scene buildScene(const SceneDesc& desc) {
   for (const Primitive& p : prims)
     if (p.inside(s.camera.location()) && s.cameraInteriors.find(p.object) < 0)
       s.cameraInteriors.push(p.object);
+  for (Primitive& p : prims) p.opaque = s.materials[p.material].opaque;
   s.bvh = Bvh(std::move(prims));
   s.effects = deriveEffects(s, desc);
   return s;

@@ -30,6 +30,10 @@ class Tracer {
     return shade(ray, prim, found->hit, level + 1, weight, inside);
   }
 
+  // Forgets the shadow cache; called at every pixel so that the work counted for a
+  // pixel never depends on which pixel the thread rendered before it.
+  void beginPixel() { std::fill(shadowCache_.begin(), shadowCache_.end(), kNoCache); }
+
  private:
   // `level` is the level this hit runs at: 1 for the primary ray's hit.
   Color shade(const Ray& ray, const Primitive& prim, const ShapeHit& hit, int level, double weight,
@@ -149,6 +153,7 @@ class Tracer {
 
   Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
                           const Ray& ray, const Vec3& p, const Vec3& n, const InteriorList& inside) {
+    cacheSlot_ = size_t(&light - scene_.lights.data());
     const Vec3 toLight = light.location - p;
     const double dist = length(toLight);
     const Vec3 l = toLight / dist;
@@ -200,6 +205,22 @@ class Tracer {
 
   Color segmentTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside) {
     ++stats_.shadowRays;
+    // POV-Ray's shadow cache: the object that last blocked this light is tried first.
+    const Ray segment{origin, dir};
+    uint32_t& cached = shadowCache_[cacheSlot_];
+    if (cached != kNoCache) {
+      ++stats_.intersectionTests;
+      if (scene_.bvh.primitives()[cached].intersect(segment, kShadowTolerance, dist - kShadowTolerance)) return {};
+    }
+    // Most segments are either clear or blocked by something opaque: an unordered
+    // query settles those; only see-through objects need the ordered walk below.
+    uint32_t blocker = 0;
+    switch (scene_.bvh.occlusion(segment, kShadowTolerance, dist - kShadowTolerance, stats_.intersectionTests,
+                                 blocker)) {
+      case Occlusion::Clear: return Color(1.0);
+      case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
+      case Occlusion::Transparent: break;
+    }
     Color k(1.0);
     for (;;) {
       const auto found = scene_.bvh.closest(Ray{origin, dir}, kShadowTolerance, dist - kShadowTolerance,
@@ -276,6 +297,9 @@ class Tracer {
 
   const Scene& scene_;
   RenderStats& stats_;
+  static constexpr uint32_t kNoCache = ~0u;
+  std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
+  size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
   std::vector<Color> cache_;
   const InteriorList* areaInside_ = nullptr;  // interiors the current area-light samples start in
 };
