@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 #include "core/error.h"
 #include "parallel/cluster.h"
@@ -183,6 +184,12 @@ bool requestPending() {
 
 int takeRequest() {
   Timed timed;
+  // Poll with short sleeps rather than block: Open MPI's blocking receive spins, and a
+  // spinning master would take a core from the workers when ranks share cores.
+  for (int flag = 0; !flag;) {
+    check(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
+    if (!flag) std::this_thread::sleep_for(std::chrono::microseconds(50));
+  }
   int dummy = 0;
   MPI_Status status;
   check(MPI_Recv(&dummy, 1, MPI_INT, MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &status), "MPI_Recv");

@@ -18,8 +18,9 @@ struct RenderStats {
   uint64_t totalRays() const {
     return primaryRays + shadowRays + reflectedRays + refractedRays + transmittedRays;
   }
-  // The deterministic work measure of the load map: tests plus shading operations.
-  uint64_t work() const { return intersectionTests + shadingOps; }
+  // The deterministic work measure of the load map: rays traced, intersection tests and
+  // shading operations (a pixel of empty background still costs its camera rays).
+  uint64_t work() const { return totalRays() + intersectionTests + shadingOps; }
 
   RenderStats& operator+=(const RenderStats& o) {
     primaryRays += o.primaryRays;
