@@ -1,4 +1,5 @@
 // `pvrt render SCENE -o OUT`: the paper's "input, output, optional saved configuration".
+#include <algorithm>
 #include <csignal>
 #include <chrono>
 #include <cctype>
@@ -101,15 +102,20 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
 // log-scale false-colour PNG (dark blue: little work, yellow-white: most).
 void writeLoadMap(const std::string& prefix, const std::vector<float>& load, int width, int height) {
   Image raw(width, height), colour(width, height);
-  float hi = 0;
-  for (float v : load) hi = std::max(hi, v);
-  const double logHi = std::log1p(double(hi));
+  // Log scale from the cheapest pixel to the dearest, so that both ends are visible.
+  float lo = 0, hi = 0;
+  if (!load.empty()) {
+    const auto [mn, mx] = std::minmax_element(load.begin(), load.end());
+    lo = *mn;
+    hi = *mx;
+  }
+  const double logLo = std::log1p(double(lo)), logSpan = std::log1p(double(hi)) - logLo;
   static const Color ramp[] = {{0.0, 0.0, 0.05}, {0.1, 0.0, 0.4}, {0.6, 0.05, 0.3}, {0.95, 0.4, 0.0}, {1.0, 1.0, 0.6}};
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const double v = load[size_t(y) * width + x];
       raw.set(x, y, Color(v));
-      const double t = logHi > 0 ? std::log1p(v) / logHi * 4.0 : 0.0;
+      const double t = logSpan > 0 ? (std::log1p(v) - logLo) / logSpan * 4.0 : 0.0;
       const int i = std::min(3, int(t));
       const double f = t - i;
       colour.set(x, y, ramp[i] * (1 - f) + ramp[i + 1] * f);
