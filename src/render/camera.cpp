@@ -5,6 +5,10 @@
 
 namespace pvrt {
 
+namespace {
+constexpr double kCameraEpsilon = 1e-10;  // POV-Ray's EPSILON in its look_at code
+}  // namespace
+
 Camera::Camera(const CameraDesc& desc) {
   // POV-Ray applies the modifiers in a fixed order: right, direction, angle, up, sky,
   // location, look_at, then the camera's transforms.
@@ -16,16 +20,17 @@ Camera::Camera(const CameraDesc& desc) {
   Vec3 location = desc.location;
   if (desc.lookAt) {
     const double ld = length(direction), lu = length(up), lr = length(right);
-    const double handed = dot(cross(up, direction), right) < 0 ? -1.0 : 1.0;
+    const double handed = dot(cross(up, direction), right) > 0 ? 1.0 : -1.0;
     const Vec3 d = normalize(*desc.lookAt - location);
     Vec3 r = cross(desc.sky, d);
-    if (length(r) > 0) {  // sky parallel to the view: POV-Ray keeps the old right vector
-      r = normalize(r);
-      const Vec3 u = cross(d, r);
-      direction = d * ld;
-      right = r * (handed * lr);
-      up = u * lu;
-    }
+    // Sky parallel to the view (looking straight down): POV-Ray keeps the old right
+    // vector but still turns direction and up towards look_at.
+    if (std::fabs(r.x) < kCameraEpsilon && std::fabs(r.y) < kCameraEpsilon && std::fabs(r.z) < kCameraEpsilon)
+      r = right;
+    r = normalize(r);
+    direction = d * ld;
+    up = cross(d, r) * lu;
+    right = r * (handed * lr);
   }
   const Affine t = desc.transforms.combined();
   location_ = t.applyPoint(location);

@@ -32,7 +32,7 @@ Light buildLight(const LightDesc& d) {
     l.size1 = d.area->size1;
     l.size2 = d.area->size2;
     l.adaptive = d.area->adaptive;
-    l.circular = d.area->circular;
+    l.circular = d.area->circular || d.area->orient;  // POV-Ray makes an oriented light circular
     l.orient = d.area->orient;
   }
   return l;
@@ -60,8 +60,10 @@ Vec3 Light::areaSample(int i, int j, const Vec3& toLight) const {
   Vec3 a1 = axis1, a2 = axis2;
   if (orient) {
     // Turn the light's grid to face the shaded point, keeping |axis1| as its size.
-    const Vec3 l = -toLight;
-    Vec3 o1 = std::fabs(std::fabs(l.z) - 1.0) < 0.1 ? cross(l, Vec3{0, 1, 0}) : cross(l, Vec3{0, 0, 1});
+    // As POV-Ray: axis1 is perpendicular to the point-to-light direction and to z (to y
+    // when that direction is within 0.01 of vertical in z).
+    const Vec3& l = toLight;
+    Vec3 o1 = std::fabs(std::fabs(l.z) - 1.0) < 0.01 ? cross(l, Vec3{0, 1, 0}) : cross(l, Vec3{0, 0, 1});
     o1 = normalize(o1);
     const Vec3 o2 = normalize(cross(l, o1));
     a1 = o1 * length(axis1);

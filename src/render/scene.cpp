@@ -80,17 +80,26 @@ class PrimitiveBuilder {
     const Vec3 q = single ? toFloat(p) : p;
     return identity_ ? q : xf_.applyPoint(q);
   }
+  // A vertex normal: unit in object space, then carried by the inverse transpose and NOT
+  // renormalised, so that interpolating and then normalising equals POV-Ray's
+  // interpolate-in-object-space-then-transform under non-uniform scales and shears.
   Vec3 normal(const Vec3& n, bool single) const {
     const Vec3 q = normalize(single ? toFloat(n) : n);
-    return identity_ ? q : normalize(xf_.inverse()->applyTransposed(q));
+    return identity_ ? q : xf_.inverse()->applyTransposed(q);
   }
   void triangle(const TriangleDesc& t, bool single) {
     add(makeTriangle(point(t.p1, single), point(t.p2, single), point(t.p3, single)), false);
   }
   void smooth(const SmoothTriangleDesc& t, bool single) {
-    SmoothTriangleShape shape =
-        makeSmoothTriangle(point(t.p1, single), normal(t.n1, single), point(t.p2, single),
-                           normal(t.n2, single), point(t.p3, single), normal(t.n3, single));
+    if (single) {
+      // POV-Ray's mesh parser makes a triangle whose vertex normals all agree a flat one
+      // (with the geometric normal, whatever the normals said).
+      const Vec3 a = normalize(toFloat(t.n1)), b = normalize(toFloat(t.n2)), c = normalize(toFloat(t.n3));
+      if (a == b && b == c) return triangle(TriangleDesc{t.p1, t.p2, t.p3, t.loc}, true);
+    }
+    const Vec3 p1 = point(t.p1, single), p2 = point(t.p2, single), p3 = point(t.p3, single);
+    SmoothTriangleShape shape{p1, p2, p3, normal(t.n1, single), normal(t.n2, single), normal(t.n3, single),
+                              makeTriangle(p1, p2, p3).normal};
     // POV-Ray drops a lone smooth_triangle whose vertex normals are not all strictly on one
     // side of its face ("Degenerate triangle"); inside a mesh the triangle is kept.
     if (!single) {

@@ -339,6 +339,8 @@ class Loader {
         d.adaptive = b.integer("adaptive", d.adaptive, 0, 100);
         d.circular = b.boolean("circular", false);
         d.orient = b.boolean("orient", false);
+        if ((d.circular || d.orient) && (d.size1 < 2 || d.size2 < 2))
+          throw b.error("a circular or oriented area light needs size1 and size2 of at least 2");
         l.area = d;
       } else {
         throw errorAt(c, "unknown element inside <light_source> (expected spotlight or area_light)");
