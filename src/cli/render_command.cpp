@@ -78,6 +78,10 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
       fmt::print("  {:<6}{:>7}{:>10}{:>16}{:>11.4f}{:>10.4f}{:>10.4f}{:>10.4f}{:>12.1f}\n", i, k.items, k.pixels,
                  k.counts.work(), k.computeSeconds, k.commSeconds, k.idleSeconds, k.wallSeconds,
                  k.bytesSent / 1024.0);
+      if (k.threads.size() > 1)
+        for (size_t t = 0; t < k.threads.size(); ++t)
+          fmt::print("    thread {:<3}{:>13}{:>16}{:>11.4f}\n", t, k.threads[t].pixels, k.threads[t].counts.work(),
+                     k.threads[t].seconds);
       maxC = std::max(maxC, k.computeSeconds);
       sumC += k.computeSeconds;
       maxW = std::max(maxW, double(k.counts.work()));

@@ -36,7 +36,11 @@ class RankRenderer {
     }
     const auto t0 = Clock::now();
     parallelFor(Backend::OpenMP, threads_, rows, [&](size_t r, int worker) {
-      kernel_(scene_, sampler_, rows.items[r], image_, load_.data(), perThread_[size_t(worker)].counts);
+      WorkerStats& ws = perThread_[size_t(worker)];
+      const auto start = Clock::now();
+      kernel_(scene_, sampler_, rows.items[r], image_, load_.data(), ws.counts);
+      ws.seconds += secondsSince(start);
+      ws.pixels += rows.items[r].pixels();
     });
     compute_ += secondsSince(t0);
     for (int i : items) {
@@ -65,6 +69,16 @@ class RankRenderer {
     RenderStats t;
     for (const WorkerStats& w : perThread_) t += w.counts;
     return t;
+  }
+  // Per-thread seconds, pixels and work, as floats that are exact: work is split into
+  // 24-bit halves.
+  std::vector<float> threadFigures() const {
+    std::vector<float> out;
+    for (const WorkerStats& w : perThread_) {
+      const uint64_t work = w.counts.work();
+      out.insert(out.end(), {float(w.seconds), float(w.pixels), float(work >> 24), float(work & 0xFFFFFF)});
+    }
+    return out;
   }
   double computeSeconds() const { return compute_; }
   long pixels() const { return pixels_; }
@@ -214,6 +228,10 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
                                       double(c.intersectionTests), double(c.shadingOps),
                                       double(cluster::counters().bytesSent)};
   const std::vector<double> gathered = cluster::gatherFixed(packed);
+  // Thread counts may differ between ranks: each rank's figures are prefixed by their count.
+  std::vector<float> figures = local.threadFigures();
+  figures.insert(figures.begin(), float(figures.size() / 4));
+  const std::vector<float> threadFigures = cluster::gatherv(figures);
 
   DistributedResult out;
   if (me != 0) return out;
@@ -223,6 +241,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   unpack(all, plan, r, s.width);
   r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);
   const size_t k = packed.size();
+  size_t at = 0;  // into threadFigures
   for (int rank = 0; rank < n; ++rank) {
     const double* g = gathered.data() + size_t(rank) * k;
     RankStats rs;
@@ -235,6 +254,15 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
     rs.counts = {uint64_t(g[6]), uint64_t(g[7]), uint64_t(g[8]), uint64_t(g[9]), uint64_t(g[10]), uint64_t(g[11]),
                  uint64_t(g[12])};
     rs.bytesSent = g[13];
+    const size_t threads = size_t(threadFigures[at++]);
+    for (size_t t = 0; t < threads; ++t, at += 4) {
+      WorkerStats ws;
+      ws.seconds = threadFigures[at];
+      ws.pixels = long(threadFigures[at + 1]);
+      // Only the total work is shown per thread; keep it in intersectionTests.
+      ws.counts.intersectionTests = (uint64_t(threadFigures[at + 2]) << 24) + uint64_t(threadFigures[at + 3]);
+      rs.threads.push_back(ws);
+    }
     r.totals += rs.counts;
     WorkerStats ws;
     ws.counts = rs.counts;

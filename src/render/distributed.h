@@ -34,6 +34,7 @@ struct RankStats {
   long pixels = 0;
   RenderStats counts;
   double bytesSent = 0;
+  std::vector<WorkerStats> threads;  // the rank's OpenMP threads
 };
 
 struct DistributedResult {
