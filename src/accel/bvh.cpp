@@ -179,59 +179,11 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
   stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const {
-  bool transparent = false;
-  auto test = [&](uint32_t i) {  // true: blocked
-    const Primitive& p = prims_[i];
-    if (p.noShadow) return false;
-    ++tests;
-    if (!p.intersect(ray, tMin, tMax)) return false;
-    if (p.opaque) {
-      blocker = i;
-      return true;
-    }
-    transparent = true;
-    return false;
-  };
-  if (!nodes_.empty()) {
-    const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
-    uint32_t stack[64];
-    int top = 0;
-    uint32_t node = 0;
-    for (;;) {
-      const BvhNode& n = nodes_[node];
-      if (hitsBox(n.bounds, ray.origin, inv, tMin, tMax)) {
-        if (n.count == 0) {
-          stack[top++] = n.rightOrFirst;
-          node = node + 1;
-          continue;
-        }
-        for (uint32_t i = n.rightOrFirst; i < n.rightOrFirst + n.count; ++i)
-          if (test(i)) return Occlusion::Blocked;
-      }
-      if (top == 0) break;
-      node = stack[--top];
-    }
-  }
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
-    if (test(i)) return Occlusion::Blocked;
-  return transparent ? Occlusion::Transparent : Occlusion::Clear;
-}
-
-std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
-                                       bool skipNoShadow) const {
-  std::optional<ClosestHit> best;
-  double bestT = tMax;
-  auto test = [&](uint32_t i) {
-    const Primitive& p = prims_[i];
-    if (skipNoShadow && p.noShadow) return;
-    ++tests;
-    if (auto h = p.intersect(ray, tMin, bestT)) {
-      bestT = h->t;
-      best = ClosestHit{*h, i};
-    }
-  };
-
+// Visits the leaves whose boxes the ray enters before `tMax` (which the visitor may
+// shrink), nearer child first; `leaf(i)` returning true ends the walk. Then the
+// unbounded primitives. Shared by the closest-hit and the occlusion queries.
+template <class Visit>
+void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const {
   if (!nodes_.empty()) {
     const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
     const bool negative[3] = {ray.dir.x < 0, ray.dir.y < 0, ray.dir.z < 0};
@@ -240,27 +192,56 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
     uint32_t node = 0;
     for (;;) {
       const BvhNode& n = nodes_[node];
-      if (hitsBox(n.bounds, ray.origin, inv, tMin, bestT)) {
-        if (n.count > 0) {
-          for (uint32_t i = n.rightOrFirst; i < n.rightOrFirst + n.count; ++i) test(i);
-        } else {
+      if (hitsBox(n.bounds, ray.origin, inv, tMin, tMax)) {
+        if (n.count == 0) {
           // Visit the child on the ray's near side first so that far boxes are culled.
           const uint32_t left = node + 1, right = n.rightOrFirst;
-          if (negative[n.axis]) {
-            stack[top++] = left;
-            node = right;
-          } else {
-            stack[top++] = right;
-            node = left;
-          }
+          stack[top++] = negative[n.axis] ? left : right;
+          node = negative[n.axis] ? right : left;
           continue;
         }
+        for (uint32_t i = n.rightOrFirst; i < n.rightOrFirst + n.count; ++i)
+          if (visit(i)) return;
       }
       if (top == 0) break;
       node = stack[--top];
     }
   }
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) test(i);
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+    if (visit(i)) return;
+}
+
+Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const {
+  bool transparent = false, blocked = false;
+  traverse(ray, tMin, tMax, [&](uint32_t i) {
+    const Primitive& p = prims_[i];
+    if (p.noShadow) return false;
+    ++tests;
+    if (!p.intersect(ray, tMin, tMax)) return false;
+    if (!p.opaque) {
+      transparent = true;
+      return false;
+    }
+    blocker = i;
+    return blocked = true;
+  });
+  return blocked ? Occlusion::Blocked : transparent ? Occlusion::Transparent : Occlusion::Clear;
+}
+
+std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
+                                       bool skipNoShadow) const {
+  std::optional<ClosestHit> best;
+  double bestT = tMax;
+  traverse(ray, tMin, bestT, [&](uint32_t i) {
+    const Primitive& p = prims_[i];
+    if (skipNoShadow && p.noShadow) return false;
+    ++tests;
+    if (auto h = p.intersect(ray, tMin, bestT)) {
+      bestT = h->t;
+      best = ClosestHit{*h, i};
+    }
+    return false;
+  });
   return best;
 }
 

@@ -57,6 +57,9 @@ class Bvh {
   Occlusion occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const;
 
  private:
+  template <class Visit>
+  void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
+
   std::vector<Primitive> prims_;  // bounded ones first, then unbounded
   uint32_t boundedCount_ = 0;
   std::vector<BvhNode> nodes_;
