@@ -141,9 +141,11 @@ inline bool hitsBox(const Bounds& b, const Vec3& origin, const Vec3& inv, double
     double t0 = (b.lo[a] - origin[a]) * inv[a];
     double t1 = (b.hi[a] - origin[a]) * inv[a];
     if (t0 > t1) std::swap(t0, t1);
-    // NaN (0 * inf on a slab boundary) must not reject: fmax/fmin ignore it.
-    tMin = std::fmax(tMin, t0);
-    tMax = std::fmin(tMax, t1 * (1 + 4e-16));  // a few ulps of slack so boundary hits are kept
+    // NaN (0 * inf on a slab boundary) must not reject: a comparison with NaN is false,
+    // so the bound is kept. (Written out because std::fmin/fmax are library calls.)
+    tMin = t0 > tMin ? t0 : tMin;
+    t1 *= 1 + 4e-16;  // a few ulps of slack so boundary hits are kept
+    tMax = t1 < tMax ? t1 : tMax;
     if (tMin > tMax) return false;
   }
   return true;
