@@ -1,28 +1,18 @@
 #include "image/compare.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/image_io.h"
+#include "image/oiio_module.h"
+#include "image/png_io.h"
 
 namespace pvrt {
-
-namespace {
-
-OIIO::ImageBuf wrap(const std::vector<uint8_t>& px, int width, int height) {
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  OIIO::ImageBuf buf(spec);
-  buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::UINT8, px.data());
-  return buf;
-}
-
-}  // namespace
 
 CompareResult compareImages8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int width, int height) {
   CompareResult r;
@@ -31,15 +21,16 @@ CompareResult compareImages8(const std::vector<uint8_t>& a, const std::vector<ui
   r.channels = long(width) * height * 3;
   // OpenImageIO gives the error statistics; the per-channel counts that the verdict rests
   // on are taken on the exact 8-bit integers (OIIO counts pixels, not channels).
-  const OIIO::ImageBuf ia = wrap(a, width, height), ib = wrap(b, width, height);
-  const auto c = OIIO::ImageBufAlgo::compare(ia, ib, 0.5f / 255.0f, 0.5f / 255.0f);
-  r.meanError = c.meanerror * 255.0;
-  r.rmsError = c.rms_error * 255.0;
-  r.maxError = int(std::lround(c.maxerror * 255.0));
-  r.psnr = r.maxError == 0 ? std::numeric_limits<double>::infinity() : c.PSNR;
-  r.maxX = c.maxx;
-  r.maxY = c.maxy;
-  r.maxChannel = c.maxc;
+  OiioErrorStats c;
+  const std::string why = oiioModule().compare8(a.data(), b.data(), width, height, c);
+  if (!why.empty()) throw Error(ExitCode::OutputError, "cannot compare images: " + why);
+  r.meanError = c.meanError * 255.0;
+  r.rmsError = c.rmsError * 255.0;
+  r.maxError = int(std::lround(c.maxError * 255.0));
+  r.psnr = r.maxError == 0 ? std::numeric_limits<double>::infinity() : c.psnr;
+  r.maxX = c.maxX;
+  r.maxY = c.maxY;
+  r.maxChannel = c.maxChannel;
   for (size_t i = 0; i < a.size(); ++i) {
     const int d = std::abs(int(a[i]) - int(b[i]));
     r.over0 += d > 0;
@@ -66,12 +57,13 @@ void writeDifferenceImage(const std::string& a, const std::string& b, const std:
   int wa = 0, ha = 0, wb = 0, hb = 0;
   const std::vector<uint8_t> pa = readImage8(a, wa, ha), pb = readImage8(b, wb, hb);
   if (wa != wb || ha != hb) throw Error(ExitCode::OutputError, "cannot diff images of different sizes");
-  const OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(wrap(pa, wa, ha), wrap(pb, wb, hb));
-  const OIIO::ImageBuf scaled = OIIO::ImageBufAlgo::mul(diff, float(scale));
+  std::vector<uint8_t> diff(pa.size());
+  for (size_t i = 0; i < pa.size(); ++i) diff[i] = uint8_t(std::min(255, std::abs(int(pa[i]) - int(pb[i])) * scale));
   const std::string tmp = temporarySibling(out);
-  if (!scaled.write(tmp, OIIO::TypeDesc::UINT8)) {
+  const std::string why = writePng8(tmp, wa, ha, diff.data());
+  if (!why.empty()) {
     std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, "cannot write \"" + out + "\": " + scaled.geterror());
+    throw Error(ExitCode::OutputError, "cannot write \"" + out + "\": " + why);
   }
   if (std::rename(tmp.c_str(), out.c_str()) != 0) {
     std::remove(tmp.c_str());

@@ -1,8 +1,8 @@
 #include "image/image_io.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +11,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/oiio_module.h"
+#include "image/png_io.h"
 
 namespace pvrt {
 
@@ -34,10 +36,36 @@ uint8_t encodeSrgb8(double linear) {
   return uint8_t(std::floor(std::clamp(s, 0.0, 1.0) * 255.0 + 0.5));
 }
 
+namespace {
+
+// The smallest float that encodes to each level 1..255, found by bisection over the
+// float bit patterns (positive floats order like their bits), so that encoding a whole
+// image is a table search rather than a pow() per channel, with identical results.
+std::array<float, 256> levelThresholds() {
+  std::array<float, 256> first{};
+  for (int level = 1; level < 256; ++level) {
+    uint32_t lo = 0, hi = 0x3f800000u;  // 0.0f .. 1.0f, which encodes to 255
+    while (lo < hi) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      if (encodeSrgb8(double(std::bit_cast<float>(mid))) >= level) hi = mid; else lo = mid + 1;
+    }
+    first[size_t(level)] = std::bit_cast<float>(lo);
+  }
+  first[0] = -INFINITY;
+  return first;
+}
+
+}  // namespace
+
 std::vector<uint8_t> encodeSrgb8(const Image& image) {
+  static const std::array<float, 256> first = levelThresholds();
   const std::vector<float>& src = image.data();
   std::vector<uint8_t> out(src.size());
-  for (size_t i = 0; i < src.size(); ++i) out[i] = encodeSrgb8(double(src[i]));
+  for (size_t i = 0; i < src.size(); ++i) {
+    const float v = src[i];
+    // NaN compares false everywhere and so lands on level 0, as encodeSrgb8(NaN) does.
+    out[i] = v >= first[1] ? uint8_t(std::upper_bound(first.begin() + 1, first.end(), v) - first.begin() - 1) : 0;
+  }
   return out;
 }
 
@@ -50,59 +78,32 @@ void writeImage(const Image& image, const std::string& path) {
   if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
     throw outputError(path, "no such directory \"" + dir.string() + "\"");
 
-  const bool linear = ext == ".exr";
-  OIIO::ImageSpec spec(image.width(), image.height(), 3, linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (linear) {
-    spec.attribute("oiio:ColorSpace", "Linear");
-    spec.attribute("compression", "zip");
-  } else {
-    spec.attribute("oiio:ColorSpace", "sRGB");
-  }
-  spec.attribute("Software", "pvrt");
-
   // Write to a temporary sibling and rename it into place when complete.
   const std::string tmp = temporarySibling(path);
-  auto out = OIIO::ImageOutput::create(tmp);
-  bool ok = out && out->open(tmp, spec);
-  if (ok) {
-    if (linear) {
-      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.data().data());
-    } else {
-      const std::vector<uint8_t> px = encodeSrgb8(image);
-      ok = out->write_image(OIIO::TypeDesc::UINT8, px.data());
-    }
-    ok = out->close() && ok;
+  std::string why;
+  if (ext == ".png") {
+    why = writePng8(tmp, image.width(), image.height(), encodeSrgb8(image).data());
+  } else if (ext == ".exr") {
+    why = oiioModule().write(tmp, image.width(), image.height(), true, image.data().data());
+  } else {
+    why = oiioModule().write(tmp, image.width(), image.height(), false, encodeSrgb8(image).data());
   }
-  if (!ok) {
-    const std::string why = out ? out->geterror() : OIIO::geterror();
+  if (!why.empty()) {
     std::remove(tmp.c_str());
-    throw outputError(path, why.empty() ? "write failed" : why);
+    throw outputError(path, why);
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
+    why = std::strerror(errno);
     std::remove(tmp.c_str());
     throw outputError(path, why);
   }
 }
 
 std::vector<uint8_t> readImage8(const std::string& path, int& width, int& height) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    const std::string why = OIIO::geterror();
-    throw Error(ExitCode::SceneError, "cannot read image \"" + path + "\": " + (why.empty() ? "unknown error" : why));
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  width = spec.width;
-  height = spec.height;
-  std::vector<uint8_t> all(size_t(width) * height * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, all.data()))
-    throw Error(ExitCode::SceneError, "cannot read image \"" + path + "\": " + in->geterror());
-  in->close();
-  // Keep RGB; a grey image is expanded, alpha dropped.
-  std::vector<uint8_t> rgb(size_t(width) * height * 3);
-  const int n = spec.nchannels;
-  for (size_t i = 0; i < size_t(width) * height; ++i)
-    for (int c = 0; c < 3; ++c) rgb[i * 3 + size_t(c)] = all[i * size_t(n) + size_t(n >= 3 ? c : 0)];
+  std::vector<uint8_t> rgb;
+  const std::string why = isPngFile(path) ? readPng8(path, width, height, rgb)
+                                          : oiioModule().read8(path, width, height, rgb);
+  if (!why.empty()) throw Error(ExitCode::SceneError, "cannot read image \"" + path + "\": " + why);
   return rgb;
 }
 

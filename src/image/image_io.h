@@ -1,4 +1,5 @@
-// Image output through OpenImageIO. 8-bit formats (PNG, TGA) get POV-Ray's pipeline:
+// Image output: PNG through libpng, TGA and OpenEXR through the OpenImageIO module
+// (image/oiio_module.h). 8-bit formats (PNG, TGA) get POV-Ray's pipeline:
 // clip to [0,1], sRGB curve, round half up. OpenEXR keeps linear float values.
 // Files are written to a temporary name beside the target and renamed into place, so a
 // failed or interrupted write never leaves a truncated file or spoils an existing one.
@@ -19,7 +20,7 @@ std::vector<uint8_t> encodeSrgb8(const Image& image);
 
 // Writes by extension: .png, .tga, .exr. Throws pvrt::Error(ExitCode::OutputError).
 void writeImage(const Image& image, const std::string& path);
-// Reads any format OIIO knows, as 8-bit RGB (for comparisons against golden PNGs).
+// Reads PNG, or any format OpenImageIO knows, as 8-bit RGB (for comparisons against golden PNGs).
 std::vector<uint8_t> readImage8(const std::string& path, int& width, int& height);
 
 }  // namespace pvrt
