@@ -11,6 +11,7 @@ namespace pvrt {
 
 namespace {
 
+constexpr uint32_t kNone = ~0u;
 constexpr int kBins = 16;
 constexpr int kMaxLeafSize = 4;
 constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (stack of 64)
@@ -245,6 +246,127 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
     return false;
   });
   return best;
+}
+
+// The packet version of traverse(): visits the leaves the cone may reach before `sHi`
+// (which the visitor may shrink), nearer child first along the split axis when the
+// packet's directions agree on it. `leaf(first, count)` returning true ends the walk.
+template <class Leaf>
+void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Leaf&& leaf) const {
+  if (nodes_.empty()) return;
+  uint32_t stack[64];
+  int top = 0;
+  uint32_t node = 0;
+  for (;;) {
+    const BvhNode& n = nodes_[node];
+    double nearS;
+    if (cone.mayHit(n.bounds, sHi, nearS)) {
+      if (n.count == 0) {
+        const uint32_t left = node + 1, right = n.rightOrFirst;
+        const bool rightFirst = cone.sign(n.axis) < 0;
+        stack[top++] = rightFirst ? left : right;
+        node = rightFirst ? right : left;
+        continue;
+      }
+      if (leaf(n.rightOrFirst, n.count)) return;
+    }
+    if (top == 0) return;
+    node = stack[--top];
+  }
+}
+
+void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
+                        uint64_t& tests) const {
+  double best[kMaxPacket];
+  ShapeHit hits[kMaxPacket];
+  bool changed[kMaxPacket];
+  int all[kMaxPacket];
+  uint32_t owner[kMaxPacket];
+  for (int k = 0; k < count; ++k) {
+    best[k] = tMax;
+    all[k] = k;
+    owner[k] = kNone;
+  }
+  // Unit directions from a common origin: the ray parameter t is the cone's s.
+  const PacketCone cone(rays[0].origin, [&](int k) { return rays[k].dir; }, count, tMin);
+  double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
+  auto intersectAll = [&](uint32_t i) {
+    tests += uint64_t(count);
+    prims_[i].intersectEach(rays, all, count, tMin, best, hits, changed);
+    for (int k = 0; k < count; ++k)
+      if (changed[k]) owner[k] = i;
+  };
+  traversePacket(cone, farthest, [&](uint32_t first, uint32_t n) {
+    for (uint32_t i = first; i < first + n; ++i) intersectAll(i);
+    farthest = *std::max_element(best, best + count);
+    return false;
+  });
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersectAll(i);
+  for (int k = 0; k < count; ++k) {
+    if (owner[k] == kNone) out[k].reset();
+    else out[k] = ClosestHit{hits[k], owner[k]};
+  }
+}
+
+namespace {
+
+// Can the plane lie between the apex and any segment start? Not when all of them are on
+// one side of it with a margin far above rounding (then every segment's parameter at the
+// plane falls outside the segment, as the exact test would find).
+bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, const int* live, int n) {
+  const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape);
+  if (!plane) return false;
+  auto side = [&](const Vec3& x) {
+    const double a = dot(plane->normal, x), margin = 1e-9 * (std::fabs(a) + std::fabs(plane->distance));
+    const double d = a - plane->distance;
+    return d > margin ? 1 : d < -margin ? -1 : 0;
+  };
+  const int s = side(apex);
+  if (s == 0) return false;
+  for (int i = 0; i < n; ++i)
+    if (side(segments[live[i]].origin) != s) return false;
+  return true;
+}
+
+}  // namespace
+
+void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
+                          Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  int live[kMaxPacket];
+  bool hit[kMaxPacket];
+  int n = count;
+  for (int k = 0; k < count; ++k) {
+    out[k] = Occlusion::Clear;
+    live[k] = k;
+  }
+  // The cone runs from the light back to each segment's start: s in [0, 1].
+  const PacketCone cone(apex, [&](int k) { return segments[k].origin - apex; }, count, 0.0);
+  const double sHi = 1.0;
+  // Tests every live segment against primitive i; an opaque hit retires the segment.
+  auto test = [&](uint32_t i) {
+    const Primitive& p = prims_[i];
+    if (p.noShadow) return;
+    tests += uint64_t(n);
+    p.hitsEach(segments, live, n, tMin, tMax, hit);
+    int kept = 0;
+    for (int j = 0; j < n; ++j) {
+      const int k = live[j];
+      if (hit[j] && p.opaque) {
+        out[k] = Occlusion::Blocked;
+        blocker[k] = i;
+        continue;
+      }
+      if (hit[j]) out[k] = Occlusion::Transparent;
+      live[kept++] = k;
+    }
+    n = kept;
+  };
+  traversePacket(cone, sHi, [&](uint32_t first, uint32_t count) {
+    for (uint32_t i = first; i < first + count && n > 0; ++i) test(i);
+    return n == 0;
+  });
+  for (uint32_t i = boundedCount_; i < prims_.size() && n > 0; ++i)
+    if (!planeSeparates(prims_[i], apex, segments, live, n)) test(i);
 }
 
 }  // namespace pvrt

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "accel/packet.h"
 #include "geometry/primitive.h"
 
 namespace pvrt {
@@ -56,7 +57,19 @@ class Bvh {
   // `blocker` receives the opaque primitive found.
   Occlusion occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const;
 
+  // closest() for each of `count` (<= kMaxPacket) unit-direction rays that all start at
+  // the same point. Gives for every ray the same answer as closest() would.
+  void closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
+                     uint64_t& tests) const;
+  // occlusion() for each of `count` (<= kMaxPacket) segments that all end at `apex` (a
+  // light): segment k runs from segments[k].origin along its unit direction over
+  // (tMin, tMax[k]), with segments[k].origin + dir * (tMax[k] + tMin) = apex.
+  void occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
+                       Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+
  private:
+  template <class Leaf>
+  void traversePacket(const PacketCone& cone, const double& sHi, Leaf&& leaf) const;
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 

@@ -35,11 +35,15 @@ constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(const Vec3& a) { return a / length(a); }
+// Component-wise min and max that, like std::fmin/fmax, ignore a NaN operand, but are
+// inlined (std::fmin/fmax are library calls unless NaNs are ruled out).
+inline double fminInline(double a, double b) { return b < a || a != a ? b : a; }
+inline double fmaxInline(double a, double b) { return b > a || a != a ? b : a; }
 inline Vec3 vmin(const Vec3& a, const Vec3& b) {
-  return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+  return {fminInline(a.x, b.x), fminInline(a.y, b.y), fminInline(a.z, b.z)};
 }
 inline Vec3 vmax(const Vec3& a, const Vec3& b) {
-  return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+  return {fmaxInline(a.x, b.x), fmaxInline(a.y, b.y), fmaxInline(a.z, b.z)};
 }
 inline bool isFinite(const Vec3& a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);

@@ -54,12 +54,14 @@ std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double l
 
 // ---------------------------------------------------------------- plane
 
+// Tested against every ray (planes are unbounded), so the two tolerance checks compare
+// squares instead of taking the direction's length: |nd| < eps |D| and t |D| <= depth.
 std::optional<ShapeHit> hitPlane(const PlaneShape& p, const Ray& ray, double lo, double hi) {
   const double nd = dot(p.normal, ray.dir);
-  const double len = length(ray.dir);
-  if (std::fabs(nd) < kPovEpsilon * len) return std::nullopt;
+  const double len2 = dot(ray.dir, ray.dir);
+  if (nd * nd < kPovEpsilon * kPovEpsilon * len2) return std::nullopt;
   const double t = (p.distance - dot(p.normal, ray.origin)) / nd;
-  if (t <= std::max(lo, kDepthTolerance / len) || t >= hi) return std::nullopt;
+  if (t <= lo || t >= hi || t * t * len2 <= kDepthTolerance * kDepthTolerance) return std::nullopt;
   return ShapeHit{t};
 }
 
@@ -360,6 +362,29 @@ SmoothTriangleShape makeSmoothTriangle(const Vec3& p1, const Vec3& n1, const Vec
                                        const Vec3& p3, const Vec3& n3) {
   const TriangleShape flat = makeTriangle(p1, p2, p3);
   return {p1, p2, p3, normalize(n1), normalize(n2), normalize(n3), flat.normal};
+}
+
+void Primitive::intersectEach(const Ray* rays, const int* which, int n, double tMin, double* best, ShapeHit* hits,
+                              bool* changed) const {
+  const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);
+  for (int i = 0; i < n; ++i) {
+    const int k = which[i];
+    const auto h = sphere ? hitSphere(*sphere, rays[k], tMin, best[k], true) : intersect(rays[k], tMin, best[k]);
+    changed[k] = bool(h);
+    if (h) {
+      best[k] = h->t;
+      hits[k] = *h;
+    }
+  }
+}
+
+void Primitive::hitsEach(const Ray* rays, const int* which, int n, double tMin, const double* tMax,
+                         bool* blocked) const {
+  const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);
+  for (int i = 0; i < n; ++i) {
+    const int k = which[i];
+    blocked[i] = bool(sphere ? hitSphere(*sphere, rays[k], tMin, tMax[k], true) : intersect(rays[k], tMin, tMax[k]));
+  }
 }
 
 }  // namespace pvrt

@@ -53,7 +53,7 @@ OIIO::ImageBuf wrap(const uint8_t* px, int width, int height) {
 std::string compare8(const uint8_t* a, const uint8_t* b, int width, int height, pvrt::OiioErrorStats& out) {
   const auto c = OIIO::ImageBufAlgo::compare(wrap(a, width, height), wrap(b, width, height), 0.5f / 255.0f,
                                              0.5f / 255.0f);
-  if (c.error) return "comparison failed";
+  // (c.error is also set when values differ beyond the fail threshold: not an error here.)
   out = {c.meanerror, c.rms_error, c.PSNR, c.maxerror, c.maxx, c.maxy, c.maxc};
   return {};
 }

@@ -2,6 +2,7 @@
 // effect set in kernels_*.cpp (split so the instantiations compile in parallel).
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "render/kernel.h"
@@ -9,11 +10,16 @@
 
 namespace pvrt {
 
+// Below this many rays per pixel a packet saves too little to pay for itself.
+inline constexpr size_t kMinPacket = 4;
+
 template <EffectSet E>
 void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const WorkItem& rect, Image& image,
                       float* load, RenderStats& stats) {
   Tracer<E> tracer(scene, stats);
   std::vector<SubSample> offsets;
+  std::vector<Ray> rays(kMaxPacket);
+  std::vector<Color> colors(kMaxPacket);
   const int w = image.width(), h = image.height();
   for (int y = rect.y0; y < rect.y1; ++y) {
     for (int x = rect.x0; x < rect.x1; ++x) {
@@ -21,9 +27,24 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
       tracer.beginPixel();
       sampler.offsets(x, y, offsets);
       Color sum;
-      for (const SubSample& s : offsets) {
-        ++stats.primaryRays;
-        sum += tracer.trace(scene.camera.ray(x, y, s.dx, s.dy, w, h), 0, 1.0, scene.cameraInteriors);
+      if (offsets.size() < kMinPacket) {
+        for (const SubSample& s : offsets) {
+          ++stats.primaryRays;
+          sum += tracer.trace(scene.camera.ray(x, y, s.dx, s.dy, w, h), 0, 1.0, scene.cameraInteriors);
+        }
+      } else {
+        // The pixel's rays share the camera's origin: traced as packets. The colours are
+        // summed in sample order, as above, so both paths give the same bits.
+        for (size_t first = 0; first < offsets.size(); first += kMaxPacket) {
+          const int n = int(std::min<size_t>(kMaxPacket, offsets.size() - first));
+          for (int k = 0; k < n; ++k) {
+            const SubSample& s = offsets[first + size_t(k)];
+            rays[k] = scene.camera.ray(x, y, s.dx, s.dy, w, h);
+          }
+          stats.primaryRays += uint64_t(n);
+          tracer.tracePacket(rays.data(), n, scene.cameraInteriors, colors.data());
+          for (int k = 0; k < n; ++k) sum += colors[k];
+        }
       }
       image.set(x, y, offsets.size() == 1 ? sum : sum * (1.0 / double(offsets.size())));
       if (load) load[size_t(y) * w + x] = float(stats.work() - before);

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "render/effects.h"
@@ -18,6 +20,15 @@ inline constexpr double kShadowTolerance = 1e-3;  // POV-Ray's SHADOW_TOLERANCE
 
 template <EffectSet E>
 class Tracer {
+  static constexpr uint8_t kUnknown = 0xff;  // no shadow answer known beforehand
+  // What tracePacket found about one light from one hit: its direction and distance, as
+  // lightContribution computes them, and the shadow segment's occlusion (or kUnknown).
+  struct KnownLight {
+    Vec3 dir;
+    double dist = 0;
+    bool facing = false;
+    uint8_t occlusion = kUnknown;
+  };
  public:
   Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
 
@@ -30,6 +41,46 @@ class Tracer {
     return shade(ray, prim, found->hit, level + 1, weight, inside);
   }
 
+  // The primary rays of one pixel, all from the camera: their closest hits and the
+  // shadow segments of those hits are found a packet at a time (accel/packet.h); the
+  // shading is then exactly trace()'s, ray by ray. `out[k]` receives ray k's colour.
+  void tracePacket(const Ray* rays, int count, const InteriorList& inside, Color* out) {
+    std::optional<ClosestHit>* hits = hits_;
+    Vec3 *points = points_, *normals = normals_;
+    scene_.bvh.closestPacket(rays, count, kMinIsectDepth, kMaxDistance, hits, stats_.intersectionTests);
+    const size_t lights = scene_.lights.size();
+    known_.resize(size_t(count) * lights);
+    for (int k = 0; k < count; ++k) {
+      if (!hits[k]) continue;
+      // Exactly what shade() would compute for this hit, done once for every light.
+      const Primitive& prim = scene_.bvh.primitives()[hits[k]->primitive];
+      points[k] = rays[k].at(hits[k]->hit.t);
+      normals[k] = prim.normal(rays[k], hits[k]->hit);
+      if (dot(normals[k], rays[k].dir) > 0) normals[k] = -normals[k];
+      for (size_t j = 0; j < lights; ++j) {
+        KnownLight& kl = known_[size_t(k) * lights + j];
+        const Vec3 toLight = scene_.lights[j].location - points[k];
+        kl.dist = length(toLight);
+        kl.dir = toLight / kl.dist;
+        kl.facing = dot(normals[k], kl.dir) >= kPovEpsilon;
+        kl.occlusion = kUnknown;
+      }
+    }
+    if constexpr ((E & kShadows) != 0) {
+      for (size_t j = 0; j < lights; ++j) resolveShadows(points, hits, count, j);
+    }
+    for (int k = 0; k < count; ++k) {
+      if (!hits[k]) {
+        out[k] = scene_.background;
+        continue;
+      }
+      ++stats_.shadingOps;
+      knownRow_ = known_.data() + size_t(k) * lights;
+      out[k] = shadeAt(rays[k], scene_.bvh.primitives()[hits[k]->primitive], hits[k]->hit, points[k], normals[k],
+                       1, 1.0, inside);
+    }
+  }
+
   // Forgets the shadow cache; called at every pixel so that the work counted for a
   // pixel never depends on which pixel the thread rendered before it.
   void beginPixel() { std::fill(shadowCache_.begin(), shadowCache_.end(), kNoCache); }
@@ -38,11 +89,17 @@ class Tracer {
   // `level` is the level this hit runs at: 1 for the primary ray's hit.
   Color shade(const Ray& ray, const Primitive& prim, const ShapeHit& hit, int level, double weight,
               const InteriorList& inside) {
-    const Material& m = scene_.materials[prim.material];
-    const FinishDesc& f = m.finish;
     const Vec3 p = ray.at(hit.t);
     Vec3 n = prim.normal(ray, hit);
     if (dot(n, ray.dir) > 0) n = -n;  // every surface is shaded on the side the ray sees
+    return shadeAt(ray, prim, hit, p, n, level, weight, inside);
+  }
+
+  // shade() once the hit point p and the ray-facing normal n are known.
+  Color shadeAt(const Ray& ray, const Primitive& prim, const ShapeHit& hit, const Vec3& p, const Vec3& n, int level,
+                double weight, const InteriorList& inside) {
+    const Material& m = scene_.materials[prim.material];
+    const FinishDesc& f = m.finish;
 
     FilterColor pig = m.pigment.color;
     if constexpr ((E & kTextures) != 0) pig = m.pigment.at(p);
@@ -50,7 +107,10 @@ class Tracer {
 
     Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
                    pig.rgb * f.emission * alpha;
-    for (const Light& light : scene_.lights) result += lightContribution(light, m, pig, alpha, ray, p, n, inside);
+    // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
+    const KnownLight* known = std::exchange(knownRow_, nullptr);
+    for (size_t j = 0; j < scene_.lights.size(); ++j)
+      result += lightContribution(scene_.lights[j], m, pig, alpha, ray, p, n, inside, known ? &known[j] : nullptr);
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
@@ -151,12 +211,47 @@ class Tracer {
     return fade * filter * trace(Ray{p, dir}, level, w, next);
   }
 
+  // The shadow segments toward light j of the packet's hits, those that lightContribution
+  // will ask for, answered together; the results land in known_.
+  void resolveShadows(const Vec3* points, const std::optional<ClosestHit>* hits, int count, size_t j) {
+    const Light& light = scene_.lights[j];
+    if (light.shadowless) return;
+    if constexpr ((E & kAreaLights) != 0) {
+      if (light.area) return;  // sampled per hit, as before
+    }
+    const size_t lights = scene_.lights.size();
+    Ray* segments = segments_;
+    double* tMax = segmentEnd_;
+    int* which = segmentRay_;
+    int m = 0;
+    for (int k = 0; k < count; ++k) {
+      const KnownLight& kl = known_[size_t(k) * lights + j];
+      if (!hits[k] || !kl.facing) continue;  // lightContribution stops before its shadow ray
+      segments[m] = Ray{points[k], kl.dir};
+      tMax[m] = kl.dist - kShadowTolerance;
+      which[m++] = k;
+    }
+    if (m == 0) return;
+    Occlusion* result = occlusion_;
+    scene_.bvh.occlusionPacket(light.location, segments, tMax, m, kShadowTolerance, result, blocker_,
+                               stats_.intersectionTests);
+    for (int i = 0; i < m; ++i) known_[size_t(which[i]) * lights + j].occlusion = uint8_t(result[i]);
+  }
+
   Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
-                          const Ray& ray, const Vec3& p, const Vec3& n, const InteriorList& inside) {
+                          const Ray& ray, const Vec3& p, const Vec3& n, const InteriorList& inside,
+                          const KnownLight* known) {
     cacheSlot_ = size_t(&light - scene_.lights.data());
-    const Vec3 toLight = light.location - p;
-    const double dist = length(toLight);
-    const Vec3 l = toLight / dist;
+    Vec3 l;
+    double dist;
+    if (known) {
+      l = known->dir;
+      dist = known->dist;
+    } else {
+      const Vec3 toLight = light.location - p;
+      dist = length(toLight);
+      l = toLight / dist;
+    }
     Color intensity = light.color;
     if constexpr ((E & kLightShaping) != 0) {
       const double a = light.attenuation(l, dist);
@@ -167,7 +262,7 @@ class Tracer {
     if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
-        intensity = intensity * shadowFactor(light, p, l, dist, inside);
+        intensity = intensity * shadowFactor(light, p, l, dist, inside, known ? known->occlusion : kUnknown);
         if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
       }
     }
@@ -195,15 +290,25 @@ class Tracer {
   // Fraction of the light (per channel) that reaches p: 0 behind an opaque object, the
   // product of the filter colours of every transparent surface crossed otherwise.
   // `inside` lists the interiors the shadow ray starts in (those of the ray being shaded).
-  Color shadowFactor(const Light& light, const Vec3& p, const Vec3& l, double dist, const InteriorList& inside) {
+  // `known` is the occlusion of the segment when tracePacket already found it.
+  Color shadowFactor(const Light& light, const Vec3& p, const Vec3& l, double dist, const InteriorList& inside,
+                     uint8_t known) {
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) return areaShadow(light, p, l, inside);
     }
     (void)light;
+    if (known != kUnknown) {
+      ++stats_.shadowRays;
+      switch (Occlusion(known)) {
+        case Occlusion::Clear: return Color(1.0);
+        case Occlusion::Blocked: return {};
+        case Occlusion::Transparent: return orderedTransmittance(p, l, dist, inside);
+      }
+    }
     return segmentTransmittance(p, l, dist, inside);
   }
 
-  Color segmentTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside) {
+  Color segmentTransmittance(const Vec3& origin, const Vec3& dir, double dist, const InteriorList& inside) {
     ++stats_.shadowRays;
     // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
@@ -221,6 +326,12 @@ class Tracer {
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
+    return orderedTransmittance(origin, dir, dist, inside);
+  }
+
+  // The product of the filters of every surface the segment crosses, nearest first, or
+  // nothing as soon as one is opaque.
+  Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside) {
     Color k(1.0);
     for (;;) {
       const auto found = scene_.bvh.closest(Ray{origin, dir}, kShadowTolerance, dist - kShadowTolerance,
@@ -298,6 +409,16 @@ class Tracer {
   const Scene& scene_;
   RenderStats& stats_;
   static constexpr uint32_t kNoCache = ~0u;
+  // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
+  std::optional<ClosestHit> hits_[kMaxPacket];
+  Vec3 points_[kMaxPacket], normals_[kMaxPacket];
+  Ray segments_[kMaxPacket];
+  double segmentEnd_[kMaxPacket];
+  int segmentRay_[kMaxPacket];
+  Occlusion occlusion_[kMaxPacket];
+  uint32_t blocker_[kMaxPacket];
+  std::vector<KnownLight> known_;          // ray-major, one per light
+  const KnownLight* knownRow_ = nullptr;  // the row for the hit being shaded next
   std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
   std::vector<Color> cache_;

@@ -345,5 +345,103 @@ TEST(Bvh, CoincidentCentroidsStillBuildABalancedTree) {
   EXPECT_NEAR(g.t, 10 - 0.9999, 1e-12);
 }
 
+// Packets must give every ray exactly the answer the single-ray queries give, for
+// narrow packets (a pixel's samples) and wide ones (rays in every direction).
+TEST(BvhPacket, ClosestMatchesSingleRays) {
+  SceneMaker gen(31);
+  auto prims = gen.spheres(500, 8, 0.05, 0.8);
+  prims.push_back(make(PlaneShape{normalize(Vec3{0.1, 1, 0}), -9}, 9999));
+  const Bvh bvh(prims);
+  for (int packet = 0; packet < 300; ++packet) {
+    const Vec3 origin = gen.point(12);
+    const Vec3 axis = gen.direction();
+    const double spread = packet % 3 == 0 ? 2.0 : packet % 3 == 1 ? 0.01 : 1e-6;
+    const int count = 1 + packet % kMaxPacket;
+    std::vector<Ray> rays;
+    for (int k = 0; k < count; ++k) rays.push_back({origin, normalize(axis + gen.direction() * spread)});
+    std::vector<std::optional<ClosestHit>> got(static_cast<size_t>(count));
+    uint64_t tests = 0;
+    bvh.closestPacket(rays.data(), count, 1e-4, 1e7, got.data(), tests);
+    for (int k = 0; k < count; ++k) {
+      const auto want = bvh.closest(rays[size_t(k)], 1e-4, 1e7, tests);
+      ASSERT_EQ(want.has_value(), got[size_t(k)].has_value()) << "packet " << packet << " ray " << k;
+      if (want) {
+        EXPECT_EQ(want->hit.t, got[size_t(k)]->hit.t);
+        EXPECT_EQ(want->primitive, got[size_t(k)]->primitive);
+      }
+    }
+  }
+}
+
+TEST(BvhPacket, OcclusionMatchesSingleSegments) {
+  SceneMaker gen(32);
+  auto prims = gen.spheres(400, 8, 0.05, 0.8);
+  prims.push_back(make(PlaneShape{Vec3{0, 1, 0}, -9}, 9999));
+  for (size_t i = 0; i < prims.size(); i += 7) prims[i].opaque = false;  // some see-through
+  const Bvh bvh(prims);
+  int blocked = 0, clear = 0, transparent = 0;
+  for (int packet = 0; packet < 300; ++packet) {
+    const Vec3 apex = gen.point(12);
+    const Vec3 centre = gen.point(9);
+    const double spread = packet % 3 == 0 ? 6.0 : packet % 3 == 1 ? 0.05 : 1e-7;
+    const int count = 1 + packet % kMaxPacket;
+    std::vector<Ray> segments;
+    std::vector<double> tMax;
+    for (int k = 0; k < count; ++k) {
+      const Vec3 start = centre + gen.point(spread);
+      const Vec3 to = apex - start;
+      const double dist = length(to);
+      segments.push_back({start, to / dist});
+      tMax.push_back(dist - 1e-3);
+    }
+    std::vector<Occlusion> got(static_cast<size_t>(count));
+    std::vector<uint32_t> blocker(static_cast<size_t>(count));
+    uint64_t tests = 0;
+    bvh.occlusionPacket(apex, segments.data(), tMax.data(), count, 1e-3, got.data(), blocker.data(), tests);
+    for (int k = 0; k < count; ++k) {
+      uint32_t b = 0;
+      const Occlusion want = bvh.occlusion(segments[size_t(k)], 1e-3, tMax[size_t(k)], tests, b);
+      ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
+      blocked += want == Occlusion::Blocked;
+      clear += want == Occlusion::Clear;
+      transparent += want == Occlusion::Transparent;
+    }
+  }
+  // The cases were all exercised.
+  EXPECT_GT(blocked, 100);
+  EXPECT_GT(clear, 100);
+  EXPECT_GT(transparent, 10);
+}
+
+// The cone test is conservative: whenever one of its rays enters a box, it says so.
+TEST(BvhPacket, ConeNeverMissesABoxARayHits) {
+  SceneMaker gen(33);
+  int hits = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 apex = gen.point(5);
+    const Vec3 axis = gen.direction();
+    std::vector<Vec3> dirs;
+    for (int k = 0; k < 8; ++k) dirs.push_back(normalize(axis + gen.direction() * 0.2));
+    const PacketCone cone(apex, [&](int k) { return dirs[size_t(k)]; }, 8, 0.0);
+    Bounds box;
+    box.extend(gen.point(6));
+    box.extend(gen.point(6));
+    bool any = false;
+    for (const Vec3& d : dirs) {  // exact enough: a dense march along each ray
+      for (double t = 0; t < 30 && !any; t += 0.01) {
+        const Vec3 p = apex + d * t;
+        any = p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y && p.y <= box.hi.y && p.z >= box.lo.z &&
+              p.z <= box.hi.z;
+      }
+    }
+    double nearS = 0;
+    if (any) {
+      ++hits;
+      ASSERT_TRUE(cone.mayHit(box, 30, nearS)) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(hits, 1000);
+}
+
 }  // namespace
 }  // namespace pvrt

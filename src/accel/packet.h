@@ -1,0 +1,50 @@
+// Coherent ray packets: up to kMaxPacket rays or shadow segments that share one point
+// (the camera for the primary rays of a pixel, the light for their shadow segments).
+// The BVH culls a subtree for the whole packet with one interval-arithmetic test on the
+// range of their directions (Boulos et al., "Packet-based Whitted and distribution ray
+// tracing", 2007), so the cost of walking the tree is paid once per packet instead of
+// once per ray; each ray is still intersected with each primitive exactly as alone.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "core/ray.h"
+#include "geometry/bounds.h"
+
+namespace pvrt {
+
+inline constexpr int kMaxPacket = 64;
+
+// Every point the packet can reach is apex + s * v for one of its vectors v and some
+// s in [sLo, sHi]. Built from the vectors; tests boxes conservatively.
+class PacketCone {
+ public:
+  // `vector(k)` gives the k-th vector (computed on the fly: no array to fill).
+  template <class VectorOf>
+  PacketCone(const Vec3& apex, VectorOf&& vector, int count, double sLo) : apex_(apex), sLo_(sLo) {
+    Vec3 lo(INFINITY), hi(-INFINITY);
+    for (int k = 0; k < count; ++k) {
+      const Vec3 v = vector(k);
+      lo = vmin(lo, v);
+      hi = vmax(hi, v);
+    }
+    setRange(lo, hi);
+  }
+
+  // May some vector's segment [sLo, sHi] meet the box? False only when none can.
+  // `nearS` receives a lower bound of where the box is entered.
+  bool mayHit(const Bounds& b, double sHi, double& nearS) const;
+  // The sign of the vectors along `axis` when they share one (+1, -1), else 0.
+  int sign(int axis) const { return sign_[axis]; }
+
+ private:
+  void setRange(const Vec3& lo, const Vec3& hi);
+
+  Vec3 apex_;
+  double invA_[3], invB_[3];  // the reciprocals of the extreme components (same sign)
+  int sign_[3];
+  double sLo_;
+};
+
+}  // namespace pvrt
