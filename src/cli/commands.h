@@ -14,5 +14,6 @@ Command addRenderCommand(CLI::App& app);
 Command addGenerateCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
+Command addAccuracyCommand(CLI::App& app);
 
 }  // namespace pvrt::cli

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   add(pvrt::cli::addGenerateCommand);
   add(pvrt::cli::addExportCommand);
   add(pvrt::cli::addCompareCommand);
+  add(pvrt::cli::addAccuracyCommand);
 
   try {
     app.parse(argc, argv);

@@ -20,6 +20,7 @@
 #include "parallel/cluster.h"
 #include "render/distributed.h"
 #include "render/renderer.h"
+#include "render/time_budget.h"
 #include "scene/xml_loader.h"
 #include "scene/xml_writer.h"
 
@@ -37,6 +38,8 @@ struct RenderOptions {
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
   uint64_t seed = 0;
   bool stats = false, quiet = false;
+  bool hasTimeBudget = false;
+  double timeBudget = 0;  // seconds, when hasTimeBudget
 };
 
 using Clock = std::chrono::steady_clock;
@@ -149,6 +152,10 @@ struct Prepared {
 
 Prepared prepare(const RenderOptions& o) {
   checkOutputFormat(o.output);
+  if (o.hasTimeBudget && !(o.timeBudget > 0))
+    throw Error(ExitCode::Usage, fmt::format("--time-budget must be a positive number of seconds, got {}", o.timeBudget));
+  if (o.hasTimeBudget && o.backendName == "mpi")
+    throw Error(ExitCode::Usage, "--time-budget is not available with --backend mpi");
   Prepared p;
   const auto t0 = Clock::now();
   p.desc = loadSceneFile(o.scene);
@@ -189,11 +196,21 @@ Prepared prepare(const RenderOptions& o) {
 int runLocal(const RenderOptions& o) {
   const auto start = Clock::now();
   Prepared p = prepare(o);
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  if (o.hasTimeBudget) {
+    const BudgetPlan plan = planForBudget(p.scene, p.settings, o.timeBudget);
+    p.settings.sampler.samplesPerPixel = plan.samplesPerPixel;
+    if (!o.quiet)
+      fmt::print("time budget {:.3g} s: pilot {} x {} at c={} took {:.4f} s ({:.3g} s per camera ray); "
+                 "chose --spp {} (predicted render {:.3f} s{})\n",
+                 o.timeBudget, plan.pilotWidth, plan.pilotHeight, plan.pilotSamplesPerPixel, plan.pilotSeconds,
+                 plan.secondsPerSample, plan.samplesPerPixel, plan.predictedSeconds,
+                 plan.fits ? "" : ", over the budget even at c=1");
+  }
   const RenderSettings& s = p.settings;
   ProgressBar bar(!o.quiet);
   p.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
   const RenderResult r = render(p.scene, s);
   bar.finish();
   if (r.cancelled || gInterrupted) {
@@ -285,9 +302,16 @@ Command addRenderCommand(CLI::App& app) {
       ->check(CLI::Range(1, 65536));
   c->add_option("-H,--height", o->height, "Image height (default: the scene's <image>, else 240)")
       ->check(CLI::Range(1, 65536));
-  c->add_option("--spp", o->spp, "Samples per pixel c, a perfect square; pov adds the centre ray (c=1: one ray)")
-      ->check(CLI::Range(1, 1 << 16));
-  c->add_option("--aa-depth", o->aaDepth, "POV-Ray's +R n: sets --spp to n*n")->check(CLI::Range(1, 9));
+  CLI::Option* spp =
+      c->add_option("--spp", o->spp, "Samples per pixel c, a perfect square; pov adds the centre ray (c=1: one ray)")
+          ->check(CLI::Range(1, 1 << 16));
+  CLI::Option* aa = c->add_option("--aa-depth", o->aaDepth, "POV-Ray's +R n: sets --spp to n*n")->check(CLI::Range(1, 9));
+  CLI::Option* budget =
+      c->add_option("--time-budget", o->timeBudget,
+                    "Pick the largest square --spp predicted to render within SECONDS (a pilot at 1/16 of the "
+                    "pixels measures the time per camera ray)")
+          ->excludes(spp)
+          ->excludes(aa);
   c->add_option("--sampler", o->samplerName, "Sample pattern: pov, grid or jitter")->capture_default_str();
   c->add_option("--seed", o->seed, "Seed of the jitter sampler");
   c->add_option("--backend", o->backendName, "serial, openmp or mpi (start with mpirun; OpenMP threads in each rank)")
@@ -311,7 +335,10 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");
   c->add_flag("--stats", o->stats, "Print render statistics (rays by kind, tests, effects, time)");
   c->add_flag("-q,--quiet", o->quiet, "No progress bar or summary line");
-  return [o] { return runRender(*o); };
+  return [o, budget] {
+    o->hasTimeBudget = budget->count() > 0;
+    return runRender(*o);
+  };
 }
 
 }  // namespace pvrt::cli
