@@ -10,20 +10,21 @@
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/shading.h"
+#include "render/spawn.h"
 #include "render/stats.h"
 
 namespace pvrt {
-
-inline constexpr double kShadowTolerance = 1e-3;  // POV-Ray's SHADOW_TOLERANCE
 
 template <EffectSet E>
 class Tracer {
  public:
   Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
 
-  // Colour seen along a unit-direction ray that enters at trace `level` with `weight`.
-  Color trace(const Ray& ray, int level, double weight, const InteriorList& inside) {
-    const auto found = scene_.bvh.closest(ray, kMinIsectDepth, kMaxDistance, stats_.intersectionTests);
+  // Colour seen along a unit-direction ray that enters at trace `level` with `weight`;
+  // a camera ray unless `spawned` (then it starts on a surface, render/spawn.h).
+  Color trace(const Ray& ray, int level, double weight, const InteriorList& inside, bool spawned = false) {
+    const double tMin = spawned ? scene_.tol.minDepth : scene_.tol.primaryMinDepth;
+    const auto found = scene_.bvh.closest(ray, tMin, scene_.tol.maxDistance, stats_.intersectionTests);
     if (!found) return scene_.background;
     ++stats_.shadingOps;
     const Primitive& prim = scene_.bvh.primitives()[found->primitive];
@@ -40,7 +41,8 @@ class Tracer {
               const InteriorList& inside) {
     const Material& m = scene_.materials[prim.material];
     const FinishDesc& f = m.finish;
-    const Vec3 p = ray.at(hit.t);
+    const SurfacePoint sp = prim.surfacePoint(ray, hit);
+    const Vec3& p = sp.p;
     Vec3 n = prim.normal(ray, hit);
     if (dot(n, ray.dir) > 0) n = -n;  // every surface is shaded on the side the ray sees
 
@@ -50,7 +52,7 @@ class Tracer {
 
     Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
                    pig.rgb * f.emission * alpha;
-    for (const Light& light : scene_.lights) result += lightContribution(light, m, pig, alpha, ray, p, n, inside);
+    for (const Light& light : scene_.lights) result += lightContribution(light, m, pig, alpha, ray, sp, n, inside);
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
@@ -60,7 +62,7 @@ class Tracer {
     }
     if constexpr ((E & kTransmission) != 0) {
       if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
-        result += transmit(ray, hit.t, prim.object, m, pig, rho, p, n, level, weight, inside, totalInternal);
+        result += transmit(ray, hit.t, prim.object, m, pig, rho, sp, n, level, weight, inside, totalInternal);
     }
     if constexpr ((E & kReflection) != 0) {
       if (m.reflective && !totalInternal) {
@@ -69,7 +71,7 @@ class Tracer {
                                                                      f.reflection.min.maxComponent()));
         if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
           ++stats_.reflectedRays;
-          Color c = trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+          Color c = trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
           if (f.reflection.exponent != 1) {
             const double e = 1.0 / f.reflection.exponent;
             c = {std::pow(std::max(c.r, 0.0), e), std::pow(std::max(c.g, 0.0), e), std::pow(std::max(c.b, 0.0), e)};
@@ -110,7 +112,7 @@ class Tracer {
   // Light leaving an object through this surface has crossed its interior for `depth`;
   // POV-Ray fades only that transmitted share, not the surface's own shading.
   Color transmit(const Ray& ray, double depth, uint32_t object, const Material& m, const FilterColor& pig,
-                 const Color& rho, const Vec3& p, const Vec3& n, int level, double weight,
+                 const Color& rho, const SurfacePoint& sp, const Vec3& n, int level, double weight,
                  const InteriorList& inside, bool& totalInternal) {
     Color filter = pig.rgb * pig.filter + Color(pig.transmit);
     if (m.finish.conserveEnergy)
@@ -133,7 +135,7 @@ class Tracer {
     if (std::fabs(eta - 1.0) < kPovEpsilon) {
       // Straight through: POV-Ray does not spend a trace level on it.
       ++stats_.transmittedRays;
-      return fade * filter * trace(Ray{p, ray.dir}, level - 1, w, next);
+      return fade * filter * trace(spawnRay(sp, n, ray.dir), level - 1, w, next, true);
     }
     if (level >= scene_.globals.maxTraceLevel) return {};
     const double c1 = -dot(ray.dir, n);
@@ -143,16 +145,17 @@ class Tracer {
       // not tinted by the filter, and replaces the ordinary reflection.
       totalInternal = true;
       ++stats_.reflectedRays;
-      return fade * trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+      return fade * trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
     }
     ++stats_.refractedRays;
     // Heckbert's formula; unit length in exact arithmetic and, as in POV-Ray, not renormalised.
     const Vec3 dir = ray.dir * eta + n * (eta * c1 - std::sqrt(k));
-    return fade * filter * trace(Ray{p, dir}, level, w, next);
+    return fade * filter * trace(spawnRay(sp, n, dir), level, w, next, true);
   }
 
   Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
-                          const Ray& ray, const Vec3& p, const Vec3& n, const InteriorList& inside) {
+                          const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside) {
+    const Vec3& p = sp.p;
     cacheSlot_ = size_t(&light - scene_.lights.data());
     const Vec3 toLight = light.location - p;
     const double dist = length(toLight);
@@ -167,7 +170,7 @@ class Tracer {
     if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
-        intensity = intensity * shadowFactor(light, p, l, dist, inside);
+        intensity = intensity * shadowFactor(light, offsetRayOrigin(sp, n, l), l, dist, inside);
         if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
       }
     }
@@ -207,23 +210,23 @@ class Tracer {
     ++stats_.shadowRays;
     // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
+    const double tol = scene_.tol.shadow;
     uint32_t& cached = shadowCache_[cacheSlot_];
     if (cached != kNoCache) {
       ++stats_.intersectionTests;
-      if (scene_.bvh.primitives()[cached].intersect(segment, kShadowTolerance, dist - kShadowTolerance)) return {};
+      if (scene_.bvh.primitives()[cached].intersect(segment, tol, dist - tol)) return {};
     }
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
     uint32_t blocker = 0;
-    switch (scene_.bvh.occlusion(segment, kShadowTolerance, dist - kShadowTolerance, stats_.intersectionTests,
-                                 blocker)) {
+    switch (scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker)) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
     Color k(1.0);
     for (;;) {
-      const auto found = scene_.bvh.closest(Ray{origin, dir}, kShadowTolerance, dist - kShadowTolerance,
+      const auto found = scene_.bvh.closest(Ray{origin, dir}, tol, dist - tol,
                                             stats_.intersectionTests, /*skipNoShadow=*/true);
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
