@@ -159,6 +159,7 @@ class Tracer {
     cacheSlot_ = size_t(&light - scene_.lights.data());
     const Vec3 toLight = light.location - p;
     const double dist = length(toLight);
+    if (!(dist > length(sp.error))) return {};  // a light at the point itself has no direction
     const Vec3 l = toLight / dist;
     Color intensity = light.color;
     if constexpr ((E & kLightShaping) != 0) {
