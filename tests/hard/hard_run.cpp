@@ -49,6 +49,7 @@ void addFigures(Outcome& out, const Figures& f) {
   out.add("edge_pixels", double(f.edge));
   out.add("edge_px", f.maxEdgePixels, f.maxEdgePixels <= 1.0);
   out.add("max_abs_err", f.maxAbsError);
+  if (std::isfinite(f.closestPixels)) out.add("closest_px", f.closestPixels);
   if (f.lit) {
     out.add("lit", double(f.lit));
     out.add("acne_fraction", double(f.acne) / double(f.lit), f.acne == 0);

@@ -43,6 +43,9 @@ Figures evaluate(const ExpectedImage& want, const Image& got, double absTol, dou
         continue;
       }
       ++f.compared;
+      double nearest = INFINITY;
+      for (int k = 0; k < int(e.margin.size()); ++k) nearest = std::min(nearest, pixelsToBoundary(want, x, y, k));
+      f.closestPixels = std::min(f.closestPixels, nearest);
       const double w[3] = {e.c.r, e.c.g, e.c.b};
       double err = 0;
       bool differs = false;
@@ -61,8 +64,6 @@ Figures evaluate(const ExpectedImage& want, const Image& got, double absTol, dou
         continue;
       }
       ++f.mismatched;
-      double nearest = INFINITY;
-      for (int k = 0; k < int(e.margin.size()); ++k) nearest = std::min(nearest, pixelsToBoundary(want, x, y, k));
       if (nearest <= 1.0) {
         ++f.edge;
         f.maxEdgePixels = std::max(f.maxEdgePixels, nearest);

@@ -40,6 +40,7 @@ struct Figures {
   long errors = 0;      // ... anywhere else: holes, leaks, acne, wrong shading
   double maxEdgePixels = 0;  // the farthest edge pixel from its boundary (the silhouette error)
   double maxAbsError = 0;    // over the pixels that match
+  double closestPixels = INFINITY;  // the nearest any compared pixel came to a boundary
   long lit = 0, acne = 0;    // analytically lit pixels, and those rendered (nearly) unlit
   bool pass() const { return nonFinite == 0 && errors == 0 && acne == 0 && maxEdgePixels <= 1.0; }
 };
