@@ -1,6 +1,7 @@
 // Ray-shape intersection, normals, bounds and inside tests for every shape.
 // Each intersector works on an arbitrary (not necessarily unit) direction D and
-// returns the ray parameter t; tolerances are POV-Ray's, measured along unit rays.
+// returns the ray parameter t; tolerances are POV-Ray's, measured along unit rays and
+// multiplied by the scene's length unit (docs/robustness.md).
 #include "geometry/primitive.h"
 
 #include <algorithm>
@@ -21,33 +22,32 @@ std::optional<double> nearestRoot(double t1, double t2, double lo, double hi) {
 
 // ---------------------------------------------------------------- sphere
 
-// POV-Ray's sphere test on a direction it takes as unit length (world rays are; local
-// rays of transformed spheres are normalised by the caller, as POV-Ray does).
+// The sphere test on a direction taken as unit length (world rays are; local rays of
+// transformed spheres are normalised by the caller, as POV-Ray does). POV-Ray's miss
+// tests, with Haines et al.'s careful arithmetic (Ray Tracing Gems, chapter 7): the
+// squared half chord r^2 - |f - (f.d)d|^2 from the perpendicular distance (no cancellation
+// when the sphere is small or far away), and the stable pair of roots q and c / q.
 std::optional<ShapeHit> hitUnitSphere(const Vec3& center, double r2, const Vec3& origin, const Vec3& dir,
-                                      double lo, double hi) {
+                                      double lo, double hi, double unit) {
   const Vec3 oc = center - origin;
   const double ocSquared = dot(oc, oc);
   const double closest = dot(oc, dir);  // distance to the point of closest approach
-  if (ocSquared >= r2 && closest < kPovEpsilon) return std::nullopt;
-  double halfChord2 = r2 - ocSquared + closest * closest;
-  // POV-Ray's form cancels catastrophically for a small sphere far away (|oc|^2 >> r^2);
-  // there the perpendicular distance gives the half chord to full precision instead.
-  // Elsewhere we keep POV-Ray's arithmetic so that images match it bit for bit.
-  if (ocSquared > 1e6 * r2) {
-    const Vec3 perp = oc - dir * closest;
-    halfChord2 = r2 - dot(perp, perp);
-  }
-  if (halfChord2 <= kPovEpsilon) return std::nullopt;
-  const double half = std::sqrt(halfChord2);
-  const auto t = nearestRoot(closest - half, closest + half, std::max(lo, kDepthTolerance), hi);
+  if (ocSquared >= r2 && closest < kPovEpsilon * unit) return std::nullopt;
+  const Vec3 perp = oc - dir * closest;
+  const double halfChord2 = r2 - dot(perp, perp);
+  if (halfChord2 <= kPovEpsilon * unit * unit) return std::nullopt;
+  const double q = closest + std::copysign(std::sqrt(halfChord2), closest);  // the root farther from 0
+  const double c = ocSquared - r2;                                           // the product of the roots
+  const auto t = nearestRoot(c / q, q, std::max(lo, kDepthTolerance * unit), hi);
   if (!t) return std::nullopt;
   return ShapeHit{*t};
 }
 
-std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double lo, double hi, bool unitDir) {
-  if (unitDir) return hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir, lo, hi);
+std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double lo, double hi, bool unitDir,
+                                  double unit) {
+  if (unitDir) return hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir, lo, hi, unit);
   const double len = length(ray.dir);
-  auto h = hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir / len, lo * len, hi * len);
+  auto h = hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir / len, lo * len, hi * len, unit);
   if (h) h->t /= len;
   return h;
 }
@@ -56,18 +56,19 @@ std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double l
 
 // Tested against every ray (planes are unbounded), so the two tolerance checks compare
 // squares instead of taking the direction's length: |nd| < eps |D| and t |D| <= depth.
-std::optional<ShapeHit> hitPlane(const PlaneShape& p, const Ray& ray, double lo, double hi) {
+std::optional<ShapeHit> hitPlane(const PlaneShape& p, const Ray& ray, double lo, double hi, double unit) {
   const double nd = dot(p.normal, ray.dir);
   const double len2 = dot(ray.dir, ray.dir);
   if (nd * nd < kPovEpsilon * kPovEpsilon * len2) return std::nullopt;
   const double t = (p.distance - dot(p.normal, ray.origin)) / nd;
-  if (t <= lo || t >= hi || t * t * len2 <= kDepthTolerance * kDepthTolerance) return std::nullopt;
+  const double depth = kDepthTolerance * unit;
+  if (t <= lo || t >= hi || t * t * len2 <= depth * depth) return std::nullopt;
   return ShapeHit{t};
 }
 
 // ---------------------------------------------------------------- box
 
-std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, double hi) {
+std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, double hi, double unit) {
   double tNear = -INFINITY, tFar = INFINITY;
   int nearFace = -1, farFace = -1;
   for (int a = 0; a < 3; ++a) {
@@ -86,7 +87,7 @@ std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, dou
     if (t2 < tFar) { tFar = t2; farFace = f2; }
     if (tNear > tFar) return std::nullopt;
   }
-  const double minT = std::max(lo, kDepthTolerance / length(ray.dir));
+  const double minT = std::max(lo, kDepthTolerance * unit / length(ray.dir));
   if (tNear > minT && tNear < hi && nearFace >= 0) return ShapeHit{tNear, nearFace};
   if (tFar > minT && tFar < hi && farFace >= 0) return ShapeHit{tFar, farFace};
   return std::nullopt;
@@ -97,7 +98,7 @@ std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, dou
 // A cone frustum with radius rb at the base and rc at the cap (a cylinder when equal).
 // part 0: the side, 1: the base cap, 2: the top cap.
 std::optional<ShapeHit> hitFrustum(const Vec3& base, const Vec3& cap, double rb, double rc, bool open,
-                                   const Ray& ray, double lo, double hi) {
+                                   const Ray& ray, double lo, double hi, double unit) {
   const Vec3 axisFull = cap - base;
   const double height = length(axisFull);
   const Vec3 a = axisFull / height;
@@ -106,7 +107,7 @@ std::optional<ShapeHit> hitFrustum(const Vec3& base, const Vec3& cap, double rb,
   const Vec3 oPerp = oc - a * h0, dPerp = ray.dir - a * dh;
   const double k = (rc - rb) / height;  // radius change per unit height
   const double r0 = rb + k * h0;
-  const double minT = std::max(lo, kConeTolerance / length(ray.dir));
+  const double minT = std::max(lo, kConeTolerance * unit / length(ray.dir));
 
   ShapeHit best{hi};
   bool found = false;
@@ -163,12 +164,12 @@ Vec3 frustumNormal(const Vec3& base, const Vec3& cap, double rb, double rc, cons
 
 // ---------------------------------------------------------------- disc
 
-std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, double hi) {
+std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, double hi, double unit) {
   const double nd = dot(d.normal, ray.dir);
   const double len = length(ray.dir);
   if (std::fabs(nd) < kPovEpsilon * len) return std::nullopt;
   const double t = dot(d.normal, d.center - ray.origin) / nd;
-  if (t <= std::max(lo, kDepthTolerance / len) || t >= hi) return std::nullopt;
+  if (t <= std::max(lo, kDepthTolerance * unit / len) || t >= hi) return std::nullopt;
   const Vec3 off = ray.at(t) - d.center;
   const double r2 = dot(off, off);
   if (r2 < d.hole2 || r2 > d.radius2) return std::nullopt;
@@ -181,7 +182,7 @@ std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, d
 // edge or vertex hits at least one of the triangles that meet there (both, at the same
 // t, when its edge value is exactly 0), so meshes never leak.
 std::optional<ShapeHit> hitTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Ray& ray,
-                                    double lo, double hi) {
+                                    double lo, double hi, double unit) {
   const Vec3& d = ray.dir;
   int kz = 0;
   if (std::fabs(d.y) > std::fabs(d[kz])) kz = 1;
@@ -202,7 +203,7 @@ std::optional<ShapeHit> hitTriangle(const Vec3& p1, const Vec3& p2, const Vec3& 
   if (det == 0) return std::nullopt;
   const double tScaled = u * sz * a[kz] + v * sz * b[kz] + w * sz * c[kz];
   const double t = tScaled / det;
-  if (t <= std::max(lo, kDepthTolerance / length(d)) || t >= hi) return std::nullopt;
+  if (t <= std::max(lo, kDepthTolerance * unit / length(d)) || t >= hi) return std::nullopt;
   return ShapeHit{t, 0, v / det, w / det};
 }
 
@@ -210,23 +211,85 @@ struct Intersector {
   const Ray& ray;
   double lo, hi;
   bool unitDir;  // world rays have unit directions; local rays of transformed shapes need not
-  std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi, unitDir); }
-  std::optional<ShapeHit> operator()(const PlaneShape& p) const { return hitPlane(p, ray, lo, hi); }
-  std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi); }
+  double unit;   // the scene's length unit, for the shape tolerances
+  std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi, unitDir, unit); }
+  std::optional<ShapeHit> operator()(const PlaneShape& p) const { return hitPlane(p, ray, lo, hi, unit); }
+  std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const CylinderShape& c) const {
-    return hitFrustum(c.base, c.cap, c.radius, c.radius, c.open, ray, lo, hi);
+    return hitFrustum(c.base, c.cap, c.radius, c.radius, c.open, ray, lo, hi, unit);
   }
   std::optional<ShapeHit> operator()(const ConeShape& c) const {
-    return hitFrustum(c.base, c.cap, c.baseRadius, c.capRadius, c.open, ray, lo, hi);
+    return hitFrustum(c.base, c.cap, c.baseRadius, c.capRadius, c.open, ray, lo, hi, unit);
   }
-  std::optional<ShapeHit> operator()(const DiscShape& d) const { return hitDisc(d, ray, lo, hi); }
+  std::optional<ShapeHit> operator()(const DiscShape& d) const { return hitDisc(d, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const TriangleShape& t) const {
     if (t.normal == Vec3{}) return std::nullopt;
-    return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi);
+    return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi, unit);
   }
   std::optional<ShapeHit> operator()(const SmoothTriangleShape& t) const {
     if (t.normal == Vec3{}) return std::nullopt;
-    return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi);
+    return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi, unit);
+  }
+};
+
+// The object-space hit point p moved onto the exact surface, with a bound on its error
+// per component (pbrt-v4's bounds for spheres and triangles, generous ones elsewhere).
+// Only the distance from the surface matters: an error along the surface merely moves
+// the point along it.
+struct Reproject {
+  const Vec3& p;
+  const ShapeHit& hit;
+  SurfacePoint operator()(const SphereShape& s) const {
+    const Vec3 v = p - s.center;
+    const double len = length(v);
+    if (!(len > 0)) return {p, vabs(p) * errorGamma(8) + Vec3(s.radius * errorGamma(8))};
+    const Vec3 q = s.center + v * (s.radius / len);
+    return {q, (vabs(q - s.center) + vabs(q)) * errorGamma(6)};
+  }
+  SurfacePoint operator()(const PlaneShape& s) const { return flat(s.normal, s.normal * s.distance); }
+  SurfacePoint operator()(const BoxShape& b) const {
+    // The face's own coordinate is exact; the other two are where the ray put them.
+    const int axis = hit.part / 2;
+    Vec3 q = p;
+    q[axis] = hit.part % 2 ? b.hi[axis] : b.lo[axis];
+    Vec3 error = vabs(q) * errorGamma(1);
+    error[axis] = 0;
+    return {q, error};
+  }
+  SurfacePoint operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
+  SurfacePoint operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
+  SurfacePoint operator()(const DiscShape& d) const { return flat(d.normal, d.center); }
+  SurfacePoint operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  SurfacePoint operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+
+  // The plane through `at` with unit normal n.
+  SurfacePoint flat(const Vec3& n, const Vec3& at) const {
+    const Vec3 q = p - n * dot(n, p - at);
+    return {q, (vabs(q) + vabs(at)) * errorGamma(8)};
+  }
+  // The barycentric combination of the corners (hit.u weights p2, hit.v weights p3).
+  SurfacePoint tri(const Vec3& p1, const Vec3& p2, const Vec3& p3) const {
+    const double b0 = 1 - hit.u - hit.v;
+    const Vec3 q = p1 * b0 + p2 * hit.u + p3 * hit.v;
+    return {q, (vabs(p1 * b0) + vabs(p2 * hit.u) + vabs(p3 * hit.v)) * errorGamma(8)};
+  }
+  SurfacePoint frustum(const Vec3& base, const Vec3& cap, double rb, double rc) const {
+    const Vec3 axisFull = cap - base;
+    const double height = length(axisFull);
+    const Vec3 a = axisFull / height;
+    const Vec3 slack = (vabs(base) + vabs(cap) + Vec3(std::max(rb, rc))) * errorGamma(16);
+    if (hit.part != 0) {  // a cap: the plane through its centre
+      const Vec3 at = hit.part == 1 ? base : cap;
+      const Vec3 q = p - a * dot(a, p - at);
+      return {q, vabs(q) * errorGamma(8) + slack};
+    }
+    const double h = dot(p - base, a);
+    const Vec3 perp = (p - base) - a * h;
+    const double len = length(perp);
+    const double r = rb + (rc - rb) * h / height;
+    if (!(len > 0) || !(r > 0)) return {p, vabs(p) * errorGamma(16) + slack};
+    const Vec3 q = base + a * h + perp * (r / len);  // radially onto the side
+    return {q, vabs(q) * errorGamma(8) + slack};
   }
 };
 
@@ -321,10 +384,28 @@ struct Inside {
 }  // namespace
 
 std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
-  if (!transform) return std::visit(Intersector{ray, tMin, tMax, true}, shape);
+  if (!transform) return std::visit(Intersector{ray, tMin, tMax, true, unit}, shape);
   // An affine map keeps the ray parameter: the local hit at t is the world hit at t.
   const Ray local{transform->toObject.applyPoint(ray.origin), transform->toObject.applyVector(ray.dir)};
-  return std::visit(Intersector{local, tMin, tMax, false}, shape);
+  return std::visit(Intersector{local, tMin, tMax, false, unit}, shape);
+}
+
+SurfacePoint Primitive::surfacePoint(const Ray& ray, const ShapeHit& hit) const {
+  if (!transform) return std::visit(Reproject{ray.at(hit.t), hit}, shape);
+  const Ray local{transform->toObject.applyPoint(ray.origin), transform->toObject.applyVector(ray.dir)};
+  const SurfacePoint sp = std::visit(Reproject{local.at(hit.t), hit}, shape);
+  // Carry the point and its error to world space (pbrt-v4's bound for an affine map).
+  const Affine& m = transform->toWorld;
+  Vec3 error;
+  for (int i = 0; i < 3; ++i) {
+    double carried = 0, rounding = std::fabs(m.t[i]);
+    for (int j = 0; j < 3; ++j) {
+      carried += std::fabs(m.m[i][j]) * sp.error[j];
+      rounding += std::fabs(m.m[i][j] * sp.p[j]);
+    }
+    error[i] = (1 + errorGamma(3)) * carried + errorGamma(3) * rounding;
+  }
+  return {m.applyPoint(sp.p), error};
 }
 
 Vec3 Primitive::normal(const Ray& ray, const ShapeHit& hit) const {
@@ -369,7 +450,7 @@ void Primitive::intersectEach(const Ray* rays, const int* which, int n, double t
   const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);
   for (int i = 0; i < n; ++i) {
     const int k = which[i];
-    const auto h = sphere ? hitSphere(*sphere, rays[k], tMin, best[k], true) : intersect(rays[k], tMin, best[k]);
+    const auto h = sphere ? hitSphere(*sphere, rays[k], tMin, best[k], true, unit) : intersect(rays[k], tMin, best[k]);
     changed[k] = bool(h);
     if (h) {
       best[k] = h->t;
@@ -383,7 +464,7 @@ void Primitive::hitsEach(const Ray* rays, const int* which, int n, double tMin, 
   const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);
   for (int i = 0; i < n; ++i) {
     const int k = which[i];
-    blocked[i] = bool(sphere ? hitSphere(*sphere, rays[k], tMin, tMax[k], true) : intersect(rays[k], tMin, tMax[k]));
+    blocked[i] = bool(sphere ? hitSphere(*sphere, rays[k], tMin, tMax[k], true, unit) : intersect(rays[k], tMin, tMax[k]));
   }
 }
 

@@ -10,10 +10,13 @@
 #include "core/ray.h"
 #include "core/transform.h"
 #include "geometry/bounds.h"
+#include "geometry/robust.h"
 
 namespace pvrt {
 
-// POV-Ray's tolerances (shared/povray-semantics.md section 7).
+// POV-Ray's tolerances (shared/povray-semantics.md section 7), for a scene whose length
+// unit is 1; every one that is a length is multiplied by the scene's unit (Primitive::unit,
+// render/spawn.h), which is 1 for scenes of ordinary size (docs/robustness.md).
 inline constexpr double kDepthTolerance = 1e-6;   // spheres, planes, boxes, discs, triangles
 inline constexpr double kConeTolerance = 1e-9;    // cylinders and cones
 inline constexpr double kPovEpsilon = 1e-10;
@@ -47,6 +50,7 @@ struct Primitive {
   uint32_t object = 0;  // index of the ObjectDesc it came from (meshes give many primitives)
   bool noShadow = false;
   bool opaque = true;  // its material lets no light through: a shadow ray hitting it is blocked
+  float unit = 1.0f;   // the scene's length unit: the shape tolerances above are multiplied by it
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
@@ -58,6 +62,8 @@ struct Primitive {
   void intersectEach(const Ray* rays, const int* which, int n, double tMin, double* best, ShapeHit* hits,
                      bool* changed) const;
   void hitsEach(const Ray* rays, const int* which, int n, double tMin, const double* tMax, bool* blocked) const;
+  // The hit point moved onto the exact surface (world space), with a bound on its error.
+  SurfacePoint surfacePoint(const Ray& ray, const ShapeHit& hit) const;
   // Geometric normal at the hit (world space, unit, not yet flipped toward the ray).
   Vec3 normal(const Ray& ray, const ShapeHit& hit) const;
   // World-space bounds; empty() for unbounded shapes (planes).

@@ -160,6 +160,10 @@ Scene buildScene(const SceneDesc& desc) {
     if (p.inside(s.camera.location()) && s.cameraInteriors.find(p.object) < 0)
       s.cameraInteriors.push(p.object);
   for (Primitive& p : prims) p.opaque = s.materials[p.material].opaque;
+  Bounds objects;
+  for (const Primitive& p : prims) objects.extend(p.bounds());
+  s.tol = rayTolerances(objects, s.camera.location());
+  for (Primitive& p : prims) p.unit = float(s.tol.unit);
   s.bvh = Bvh(std::move(prims));
   s.effects = deriveEffects(s, desc);
   return s;

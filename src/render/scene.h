@@ -9,6 +9,7 @@
 #include "render/effects.h"
 #include "render/light.h"
 #include "render/material.h"
+#include "render/spawn.h"
 #include "scene/scene_desc.h"
 
 namespace pvrt {
@@ -43,6 +44,7 @@ struct Scene {
   Bvh bvh;
   InteriorList cameraInteriors;  // objects whose inside contains the camera
   EffectSet effects = 0;         // kernel effects (supersampling is added per render)
+  RayTolerances tol;             // minimum depths and maximum distance, in the scene's unit
 };
 
 Scene buildScene(const SceneDesc& desc);

@@ -12,11 +12,10 @@
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/shading.h"
+#include "render/spawn.h"
 #include "render/stats.h"
 
 namespace pvrt {
-
-inline constexpr double kShadowTolerance = 1e-3;  // POV-Ray's SHADOW_TOLERANCE
 
 template <EffectSet E>
 class Tracer {
@@ -26,15 +25,18 @@ class Tracer {
   struct KnownLight {
     Vec3 dir;
     double dist = 0;
-    bool facing = false;
+    bool lit = false;  // lightContribution goes on to the shadow test
     uint8_t occlusion = kUnknown;
   };
+
  public:
   Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
 
-  // Colour seen along a unit-direction ray that enters at trace `level` with `weight`.
-  Color trace(const Ray& ray, int level, double weight, const InteriorList& inside) {
-    const auto found = scene_.bvh.closest(ray, kMinIsectDepth, kMaxDistance, stats_.intersectionTests);
+  // Colour seen along a unit-direction ray that enters at trace `level` with `weight`;
+  // a camera ray unless `spawned` (then it starts on a surface, render/spawn.h).
+  Color trace(const Ray& ray, int level, double weight, const InteriorList& inside, bool spawned = false) {
+    const double tMin = spawned ? scene_.tol.minDepth : scene_.tol.primaryMinDepth;
+    const auto found = scene_.bvh.closest(ray, tMin, scene_.tol.maxDistance, stats_.intersectionTests);
     if (!found) return scene_.background;
     ++stats_.shadingOps;
     const Primitive& prim = scene_.bvh.primitives()[found->primitive];
@@ -46,28 +48,28 @@ class Tracer {
   // shading is then exactly trace()'s, ray by ray. `out[k]` receives ray k's colour.
   void tracePacket(const Ray* rays, int count, const InteriorList& inside, Color* out) {
     std::optional<ClosestHit>* hits = hits_;
-    Vec3 *points = points_, *normals = normals_;
-    scene_.bvh.closestPacket(rays, count, kMinIsectDepth, kMaxDistance, hits, stats_.intersectionTests);
+    scene_.bvh.closestPacket(rays, count, scene_.tol.primaryMinDepth, scene_.tol.maxDistance, hits,
+                             stats_.intersectionTests);
     const size_t lights = scene_.lights.size();
     known_.resize(size_t(count) * lights);
     for (int k = 0; k < count; ++k) {
       if (!hits[k]) continue;
-      // Exactly what shade() would compute for this hit, done once for every light.
+      // Exactly what shade() and lightContribution() compute for this hit, done once.
       const Primitive& prim = scene_.bvh.primitives()[hits[k]->primitive];
-      points[k] = rays[k].at(hits[k]->hit.t);
-      normals[k] = prim.normal(rays[k], hits[k]->hit);
-      if (dot(normals[k], rays[k].dir) > 0) normals[k] = -normals[k];
+      points_[k] = prim.surfacePoint(rays[k], hits[k]->hit);
+      normals_[k] = prim.normal(rays[k], hits[k]->hit);
+      if (dot(normals_[k], rays[k].dir) > 0) normals_[k] = -normals_[k];
       for (size_t j = 0; j < lights; ++j) {
         KnownLight& kl = known_[size_t(k) * lights + j];
-        const Vec3 toLight = scene_.lights[j].location - points[k];
+        const Vec3 toLight = scene_.lights[j].location - points_[k].p;
         kl.dist = length(toLight);
         kl.dir = toLight / kl.dist;
-        kl.facing = dot(normals[k], kl.dir) >= kPovEpsilon;
+        kl.lit = kl.dist > length(points_[k].error) && dot(normals_[k], kl.dir) >= kPovEpsilon;
         kl.occlusion = kUnknown;
       }
     }
     if constexpr ((E & kShadows) != 0) {
-      for (size_t j = 0; j < lights; ++j) resolveShadows(points, hits, count, j);
+      for (size_t j = 0; j < lights; ++j) resolveShadows(hits, count, j);
     }
     for (int k = 0; k < count; ++k) {
       if (!hits[k]) {
@@ -76,7 +78,7 @@ class Tracer {
       }
       ++stats_.shadingOps;
       knownRow_ = known_.data() + size_t(k) * lights;
-      out[k] = shadeAt(rays[k], scene_.bvh.primitives()[hits[k]->primitive], hits[k]->hit, points[k], normals[k],
+      out[k] = shadeAt(rays[k], scene_.bvh.primitives()[hits[k]->primitive], hits[k]->hit, points_[k], normals_[k],
                        1, 1.0, inside);
     }
   }
@@ -89,17 +91,18 @@ class Tracer {
   // `level` is the level this hit runs at: 1 for the primary ray's hit.
   Color shade(const Ray& ray, const Primitive& prim, const ShapeHit& hit, int level, double weight,
               const InteriorList& inside) {
-    const Vec3 p = ray.at(hit.t);
+    const SurfacePoint sp = prim.surfacePoint(ray, hit);
     Vec3 n = prim.normal(ray, hit);
     if (dot(n, ray.dir) > 0) n = -n;  // every surface is shaded on the side the ray sees
-    return shadeAt(ray, prim, hit, p, n, level, weight, inside);
+    return shadeAt(ray, prim, hit, sp, n, level, weight, inside);
   }
 
-  // shade() once the hit point p and the ray-facing normal n are known.
-  Color shadeAt(const Ray& ray, const Primitive& prim, const ShapeHit& hit, const Vec3& p, const Vec3& n, int level,
-                double weight, const InteriorList& inside) {
+  // shade() once the hit point sp and the ray-facing normal n are known.
+  Color shadeAt(const Ray& ray, const Primitive& prim, const ShapeHit& hit, const SurfacePoint& sp, const Vec3& n,
+                int level, double weight, const InteriorList& inside) {
     const Material& m = scene_.materials[prim.material];
     const FinishDesc& f = m.finish;
+    const Vec3& p = sp.p;
 
     FilterColor pig = m.pigment.color;
     if constexpr ((E & kTextures) != 0) pig = m.pigment.at(p);
@@ -110,7 +113,7 @@ class Tracer {
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const KnownLight* known = std::exchange(knownRow_, nullptr);
     for (size_t j = 0; j < scene_.lights.size(); ++j)
-      result += lightContribution(scene_.lights[j], m, pig, alpha, ray, p, n, inside, known ? &known[j] : nullptr);
+      result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, known ? &known[j] : nullptr);
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
@@ -120,7 +123,7 @@ class Tracer {
     }
     if constexpr ((E & kTransmission) != 0) {
       if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
-        result += transmit(ray, hit.t, prim.object, m, pig, rho, p, n, level, weight, inside, totalInternal);
+        result += transmit(ray, hit.t, prim.object, m, pig, rho, sp, n, level, weight, inside, totalInternal);
     }
     if constexpr ((E & kReflection) != 0) {
       if (m.reflective && !totalInternal) {
@@ -129,7 +132,7 @@ class Tracer {
                                                                      f.reflection.min.maxComponent()));
         if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
           ++stats_.reflectedRays;
-          Color c = trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+          Color c = trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
           if (f.reflection.exponent != 1) {
             const double e = 1.0 / f.reflection.exponent;
             c = {std::pow(std::max(c.r, 0.0), e), std::pow(std::max(c.g, 0.0), e), std::pow(std::max(c.b, 0.0), e)};
@@ -170,7 +173,7 @@ class Tracer {
   // Light leaving an object through this surface has crossed its interior for `depth`;
   // POV-Ray fades only that transmitted share, not the surface's own shading.
   Color transmit(const Ray& ray, double depth, uint32_t object, const Material& m, const FilterColor& pig,
-                 const Color& rho, const Vec3& p, const Vec3& n, int level, double weight,
+                 const Color& rho, const SurfacePoint& sp, const Vec3& n, int level, double weight,
                  const InteriorList& inside, bool& totalInternal) {
     Color filter = pig.rgb * pig.filter + Color(pig.transmit);
     if (m.finish.conserveEnergy)
@@ -193,7 +196,7 @@ class Tracer {
     if (std::fabs(eta - 1.0) < kPovEpsilon) {
       // Straight through: POV-Ray does not spend a trace level on it.
       ++stats_.transmittedRays;
-      return fade * filter * trace(Ray{p, ray.dir}, level - 1, w, next);
+      return fade * filter * trace(spawnRay(sp, n, ray.dir), level - 1, w, next, true);
     }
     if (level >= scene_.globals.maxTraceLevel) return {};
     const double c1 = -dot(ray.dir, n);
@@ -203,53 +206,54 @@ class Tracer {
       // not tinted by the filter, and replaces the ordinary reflection.
       totalInternal = true;
       ++stats_.reflectedRays;
-      return fade * trace(Ray{p, mirror(ray.dir, n)}, level, w, inside);
+      return fade * trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
     }
     ++stats_.refractedRays;
     // Heckbert's formula; unit length in exact arithmetic and, as in POV-Ray, not renormalised.
     const Vec3 dir = ray.dir * eta + n * (eta * c1 - std::sqrt(k));
-    return fade * filter * trace(Ray{p, dir}, level, w, next);
+    return fade * filter * trace(spawnRay(sp, n, dir), level, w, next, true);
   }
 
   // The shadow segments toward light j of the packet's hits, those that lightContribution
   // will ask for, answered together; the results land in known_.
-  void resolveShadows(const Vec3* points, const std::optional<ClosestHit>* hits, int count, size_t j) {
+  void resolveShadows(const std::optional<ClosestHit>* hits, int count, size_t j) {
     const Light& light = scene_.lights[j];
     if (light.shadowless) return;
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) return;  // sampled per hit, as before
     }
     const size_t lights = scene_.lights.size();
-    Ray* segments = segments_;
-    double* tMax = segmentEnd_;
-    int* which = segmentRay_;
+    const double tol = scene_.tol.shadow;
     int m = 0;
     for (int k = 0; k < count; ++k) {
       const KnownLight& kl = known_[size_t(k) * lights + j];
-      if (!hits[k] || !kl.facing) continue;  // lightContribution stops before its shadow ray
-      segments[m] = Ray{points[k], kl.dir};
-      tMax[m] = kl.dist - kShadowTolerance;
-      which[m++] = k;
+      if (!hits[k] || !kl.lit) continue;  // lightContribution stops before its shadow ray
+      // The segment segmentTransmittance() would trace.
+      segments_[m] = Ray{offsetRayOrigin(points_[k], normals_[k], kl.dir), kl.dir};
+      segmentEnd_[m] = kl.dist - tol;
+      segmentRay_[m++] = k;
     }
     if (m == 0) return;
-    Occlusion* result = occlusion_;
-    scene_.bvh.occlusionPacket(light.location, segments, tMax, m, kShadowTolerance, result, blocker_,
+    scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, m, tol, occlusion_, blocker_,
                                stats_.intersectionTests);
-    for (int i = 0; i < m; ++i) known_[size_t(which[i]) * lights + j].occlusion = uint8_t(result[i]);
+    for (int i = 0; i < m; ++i) known_[size_t(segmentRay_[i]) * lights + j].occlusion = uint8_t(occlusion_[i]);
   }
 
   Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
-                          const Ray& ray, const Vec3& p, const Vec3& n, const InteriorList& inside,
+                          const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
                           const KnownLight* known) {
+    const Vec3& p = sp.p;
     cacheSlot_ = size_t(&light - scene_.lights.data());
     Vec3 l;
     double dist;
     if (known) {
       l = known->dir;
       dist = known->dist;
+      if (!(dist > length(sp.error))) return {};
     } else {
       const Vec3 toLight = light.location - p;
       dist = length(toLight);
+      if (!(dist > length(sp.error))) return {};  // a light at the point itself has no direction
       l = toLight / dist;
     }
     Color intensity = light.color;
@@ -262,7 +266,8 @@ class Tracer {
     if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
-        intensity = intensity * shadowFactor(light, p, l, dist, inside, known ? known->occlusion : kUnknown);
+        intensity = intensity * shadowFactor(light, offsetRayOrigin(sp, n, l), l, dist, inside,
+                                             known ? known->occlusion : kUnknown);
         if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
       }
     }
@@ -312,16 +317,16 @@ class Tracer {
     ++stats_.shadowRays;
     // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
+    const double tol = scene_.tol.shadow;
     uint32_t& cached = shadowCache_[cacheSlot_];
     if (cached != kNoCache) {
       ++stats_.intersectionTests;
-      if (scene_.bvh.primitives()[cached].intersect(segment, kShadowTolerance, dist - kShadowTolerance)) return {};
+      if (scene_.bvh.primitives()[cached].intersect(segment, tol, dist - tol)) return {};
     }
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
     uint32_t blocker = 0;
-    switch (scene_.bvh.occlusion(segment, kShadowTolerance, dist - kShadowTolerance, stats_.intersectionTests,
-                                 blocker)) {
+    switch (scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker)) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
@@ -332,9 +337,10 @@ class Tracer {
   // The product of the filters of every surface the segment crosses, nearest first, or
   // nothing as soon as one is opaque.
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside) {
+    const double tol = scene_.tol.shadow;
     Color k(1.0);
     for (;;) {
-      const auto found = scene_.bvh.closest(Ray{origin, dir}, kShadowTolerance, dist - kShadowTolerance,
+      const auto found = scene_.bvh.closest(Ray{origin, dir}, tol, dist - tol,
                                             stats_.intersectionTests, /*skipNoShadow=*/true);
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
@@ -411,7 +417,8 @@ class Tracer {
   static constexpr uint32_t kNoCache = ~0u;
   // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
   std::optional<ClosestHit> hits_[kMaxPacket];
-  Vec3 points_[kMaxPacket], normals_[kMaxPacket];
+  SurfacePoint points_[kMaxPacket];
+  Vec3 normals_[kMaxPacket];
   Ray segments_[kMaxPacket];
   double segmentEnd_[kMaxPacket];
   int segmentRay_[kMaxPacket];

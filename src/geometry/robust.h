@@ -1,0 +1,45 @@
+// Floating-point error bounds for hit points and the error-bounded origin of rays spawned
+// from a surface (pbrt-v4's OffsetRayOrigin; Pharr, Jakob and Humphreys, "Physically Based
+// Rendering", 4th ed., section 6.8). A spawned ray starts on the far side of the hit point's
+// error box, on the side it leaves toward, so it cannot meet the surface it left again,
+// whatever the scale or position of the scene. docs/robustness.md explains the choices.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "core/vec3.h"
+
+namespace pvrt {
+
+// gamma(n) = n u / (1 - n u): the relative error bound of n successive roundings (u = 2^-53).
+constexpr double errorGamma(int n) {
+  constexpr double u = std::numeric_limits<double>::epsilon() * 0.5;
+  return n * u / (1 - n * u);
+}
+
+inline Vec3 vabs(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+
+// A hit point re-projected onto its surface, with a per-component bound on its distance
+// from the exact surface point (world space).
+struct SurfacePoint {
+  Vec3 p;
+  Vec3 error;
+};
+
+// The origin for a ray leaving `sp` along `dir`: p moved along the normal `n` (either
+// orientation) by the error box's extent in that direction, to the side `dir` points to,
+// each component then rounded one step further away from p.
+inline Vec3 offsetRayOrigin(const SurfacePoint& sp, const Vec3& n, const Vec3& dir) {
+  const double d = dot(vabs(n), sp.error);
+  Vec3 offset = n * d;
+  if (dot(dir, n) < 0) offset = -offset;
+  Vec3 o = sp.p + offset;
+  for (int i = 0; i < 3; ++i) {
+    if (offset[i] > 0) o[i] = std::nextafter(o[i], INFINITY);
+    else if (offset[i] < 0) o[i] = std::nextafter(o[i], -INFINITY);
+  }
+  return o;
+}
+
+}  // namespace pvrt
