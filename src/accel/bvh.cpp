@@ -38,7 +38,7 @@ class Builder {
       bounds.extend(items_[i].bounds);
       centroids.extend(items_[i].centroid);
     }
-    nodes_[self].bounds = bounds;
+    nodes_[self].setBounds(bounds);
     const uint32_t count = end - begin;
     uint32_t mid = count <= 1 ? end
                  : depth < kMaxSahDepth ? split(begin, end, bounds, centroids)
@@ -154,6 +154,28 @@ inline bool hitsBox(const Bounds& b, const Vec3& origin, const Vec3& inv, double
 
 }  // namespace
 
+namespace {
+// The nearest float at or below / above v (NaN stays NaN, which every box test treats as
+// "may hit"; beyond the float range the bound becomes infinite, still conservative).
+float floatDown(double v) {
+  float f = float(v);
+  if (double(f) > v) f = std::nextafter(f, -INFINITY);
+  return f;
+}
+float floatUp(double v) {
+  float f = float(v);
+  if (double(f) < v) f = std::nextafter(f, INFINITY);
+  return f;
+}
+}  // namespace
+
+void BvhNode::setBounds(const Bounds& b) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = floatDown(b.lo[a]);
+    hi[a] = floatUp(b.hi[a]);
+  }
+}
+
 Bvh::Bvh(std::vector<Primitive> primitives) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BuildItem> items;
@@ -177,8 +199,19 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
   boundedCount_ = uint32_t(prims_.size());
   for (size_t i = 0; i < primitives.size(); ++i)
     if (!placed[i]) prims_.push_back(std::move(primitives[i]));
+  items_.reserve(prims_.size());
+  for (const Primitive& p : prims_) {
+    LeafItem it;
+    const SphereShape* sphere = p.transform ? nullptr : std::get_if<SphereShape>(&p.shape);
+    if (sphere) it.sphere = *sphere;
+    it.isSphere = sphere != nullptr;
+    it.unit = p.unit;
+    it.noShadow = p.noShadow;
+    it.opaque = p.opaque;
+    items_.push_back(it);
+  }
   stats_.nodes = nodes_.size();
-  stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * sizeof(Primitive);
+  stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * (sizeof(Primitive) + sizeof(LeafItem));
   stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -195,7 +228,7 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
     uint32_t node = 0;
     for (;;) {
       const BvhNode& n = nodes_[node];
-      if (hitsBox(n.bounds, ray.origin, inv, tMin, tMax)) {
+      if (hitsBox(n.bounds(), ray.origin, inv, tMin, tMax)) {
         if (n.count == 0) {
           // Visit the child on the ray's near side first so that far boxes are culled.
           const uint32_t left = node + 1, right = n.rightOrFirst;
@@ -217,10 +250,10 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
 Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const {
   bool transparent = false, blocked = false;
   traverse(ray, tMin, tMax, [&](uint32_t i) {
-    const Primitive& p = prims_[i];
+    const LeafItem& p = items_[i];
     if (p.noShadow) return false;
     ++tests;
-    if (!p.intersect(ray, tMin, tMax)) return false;
+    if (!intersectItem(i, ray, tMin, tMax)) return false;
     if (!p.opaque) {
       transparent = true;
       return false;
@@ -236,10 +269,9 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
   std::optional<ClosestHit> best;
   double bestT = tMax;
   traverse(ray, tMin, bestT, [&](uint32_t i) {
-    const Primitive& p = prims_[i];
-    if (skipNoShadow && p.noShadow) return false;
+    if (skipNoShadow && items_[i].noShadow) return false;
     ++tests;
-    if (auto h = p.intersect(ray, tMin, bestT)) {
+    if (auto h = intersectItem(i, ray, tMin, bestT)) {
       bestT = h->t;
       best = ClosestHit{*h, i};
     }
@@ -260,7 +292,7 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Leaf&& leaf)
   for (;;) {
     const BvhNode& n = nodes_[node];
     double nearS;
-    if (cone.mayHit(n.bounds, sHi, nearS)) {
+    if (cone.mayHit(n.bounds(), sHi, nearS)) {
       if (n.count == 0) {
         const uint32_t left = node + 1, right = n.rightOrFirst;
         const bool rightFirst = cone.sign(n.axis) < 0;
@@ -292,6 +324,17 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
   auto intersectAll = [&](uint32_t i) {
     tests += uint64_t(count);
+    const LeafItem& it = items_[i];
+    if (it.isSphere) {
+      for (int k = 0; k < count; ++k) {
+        if (const auto h = intersectWorldSphere(it.sphere, it.unit, rays[k], tMin, best[k])) {
+          best[k] = h->t;
+          hits[k] = *h;
+          owner[k] = i;
+        }
+      }
+      return;
+    }
     prims_[i].intersectEach(rays, all, count, tMin, best, hits, changed);
     for (int k = 0; k < count; ++k)
       if (changed[k]) owner[k] = i;
@@ -344,10 +387,15 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
   const double sHi = 1.0;
   // Tests every live segment against primitive i; an opaque hit retires the segment.
   auto test = [&](uint32_t i) {
-    const Primitive& p = prims_[i];
+    const LeafItem& p = items_[i];
     if (p.noShadow) return;
     tests += uint64_t(n);
-    p.hitsEach(segments, live, n, tMin, tMax, hit);
+    if (p.isSphere) {
+      for (int j = 0; j < n; ++j)
+        hit[j] = bool(intersectWorldSphere(p.sphere, p.unit, segments[live[j]], tMin, tMax[live[j]]));
+    } else {
+      prims_[i].hitsEach(segments, live, n, tMin, tMax, hit);
+    }
     int kept = 0;
     for (int j = 0; j < n; ++j) {
       const int k = live[j];

@@ -3,6 +3,7 @@
 // (planes) are kept aside and tested on every ray.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -20,14 +21,23 @@ struct BvhStats {
   double buildSeconds = 0;
 };
 
+// 32 bytes, two to a cache line: the bounds are floats rounded outward, so a box never
+// shrinks and every answer stays exactly the one the double-precision box would give.
 struct BvhNode {
-  Bounds bounds;
-  // Interior: children at `first` (left) and `first + 1`...: left child is the next node,
-  // right child is at `rightOrFirst`. Leaf: primitives [rightOrFirst, rightOrFirst + count).
+  float lo[3] = {INFINITY, INFINITY, INFINITY};
+  float hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  // Interior: left child is the next node, right child at `rightOrFirst`.
+  // Leaf: primitives [rightOrFirst, rightOrFirst + count).
   uint32_t rightOrFirst = 0;
   uint16_t count = 0;  // 0 for interior nodes
   uint8_t axis = 0;    // split axis, for front-to-back traversal
+
+  void setBounds(const Bounds& b);
+  Bounds bounds() const {
+    return {{double(lo[0]), double(lo[1]), double(lo[2])}, {double(hi[0]), double(hi[1]), double(hi[2])}};
+  }
 };
+static_assert(sizeof(BvhNode) == 32);
 
 struct ClosestHit {
   ShapeHit hit;
@@ -73,7 +83,22 @@ class Bvh {
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
+  // What the leaves need of each primitive, 40 bytes apiece beside the ~400 of a
+  // Primitive, so that traversal of a big scene streams through little memory.
+  struct LeafItem {
+    SphereShape sphere;     // valid when isSphere
+    float unit = 1;
+    bool isSphere = false;  // an untransformed sphere, tested from here
+    bool noShadow = false;
+    bool opaque = true;
+  };
+  std::optional<ShapeHit> intersectItem(uint32_t i, const Ray& ray, double tMin, double tMax) const {
+    const LeafItem& it = items_[i];
+    return it.isSphere ? intersectWorldSphere(it.sphere, it.unit, ray, tMin, tMax) : prims_[i].intersect(ray, tMin, tMax);
+  }
+
   std::vector<Primitive> prims_;  // bounded ones first, then unbounded
+  std::vector<LeafItem> items_;   // one per primitive
   uint32_t boundedCount_ = 0;
   std::vector<BvhNode> nodes_;
   BvhStats stats_;

@@ -445,6 +445,11 @@ SmoothTriangleShape makeSmoothTriangle(const Vec3& p1, const Vec3& n1, const Vec
   return {p1, p2, p3, normalize(n1), normalize(n2), normalize(n3), flat.normal};
 }
 
+std::optional<ShapeHit> intersectWorldSphere(const SphereShape& s, float unit, const Ray& ray, double tMin,
+                                             double tMax) {
+  return hitSphere(s, ray, tMin, tMax, true, unit);
+}
+
 void Primitive::intersectEach(const Ray* rays, const int* which, int n, double tMin, double* best, ShapeHit* hits,
                               bool* changed) const {
   const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);

@@ -73,6 +73,11 @@ struct Primitive {
   bool inside(const Vec3& p) const;
 };
 
+// intersect() of an untransformed sphere, for callers that keep spheres in a compact
+// array of their own (the BVH's leaves): the same arithmetic, so the same answers.
+std::optional<ShapeHit> intersectWorldSphere(const SphereShape& s, float unit, const Ray& ray, double tMin,
+                                             double tMax);
+
 // Triangles with their face normal normalize((p1-p2) x (p3-p2)) precomputed; a zero-area
 // triangle gets a zero normal and is never hit.
 TriangleShape makeTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3);

@@ -5,7 +5,9 @@
 // whatever the scale or position of the scene. docs/robustness.md explains the choices.
 #pragma once
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/vec3.h"
@@ -19,6 +21,16 @@ constexpr double errorGamma(int n) {
 }
 
 inline Vec3 vabs(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+
+// The next double above / below v: std::nextafter without the library call (this runs
+// for every shadow and secondary ray). Infinities and NaN are returned unchanged.
+inline double nextUp(double v) {
+  if (!(v < INFINITY)) return v;
+  if (v == 0) return std::numeric_limits<double>::denorm_min();
+  const uint64_t bits = std::bit_cast<uint64_t>(v);
+  return std::bit_cast<double>(v > 0 ? bits + 1 : bits - 1);
+}
+inline double nextDown(double v) { return -nextUp(-v); }
 
 // A hit point re-projected onto its surface, with a per-component bound on its distance
 // from the exact surface point (world space).
@@ -36,8 +48,8 @@ inline Vec3 offsetRayOrigin(const SurfacePoint& sp, const Vec3& n, const Vec3& d
   if (dot(dir, n) < 0) offset = -offset;
   Vec3 o = sp.p + offset;
   for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0) o[i] = std::nextafter(o[i], INFINITY);
-    else if (offset[i] < 0) o[i] = std::nextafter(o[i], -INFINITY);
+    if (offset[i] > 0) o[i] = nextUp(o[i]);
+    else if (offset[i] < 0) o[i] = nextDown(o[i]);
   }
   return o;
 }

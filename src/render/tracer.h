@@ -266,8 +266,7 @@ class Tracer {
     if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
-        intensity = intensity * shadowFactor(light, offsetRayOrigin(sp, n, l), l, dist, inside,
-                                             known ? known->occlusion : kUnknown);
+        intensity = intensity * shadowFactor(light, sp, n, l, dist, inside, known ? known->occlusion : kUnknown);
         if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
       }
     }
@@ -296,20 +295,23 @@ class Tracer {
   // product of the filter colours of every transparent surface crossed otherwise.
   // `inside` lists the interiors the shadow ray starts in (those of the ray being shaded).
   // `known` is the occlusion of the segment when tracePacket already found it.
-  Color shadowFactor(const Light& light, const Vec3& p, const Vec3& l, double dist, const InteriorList& inside,
-                     uint8_t known) {
-    if constexpr ((E & kAreaLights) != 0) {
-      if (light.area) return areaShadow(light, p, l, inside);
-    }
-    (void)light;
+  // The segments start at the error-bounded origin above sp (toward the light).
+  Color shadowFactor(const Light& light, const SurfacePoint& sp, const Vec3& n, const Vec3& l, double dist,
+                     const InteriorList& inside, uint8_t known) {
     if (known != kUnknown) {
       ++stats_.shadowRays;
       switch (Occlusion(known)) {
         case Occlusion::Clear: return Color(1.0);
         case Occlusion::Blocked: return {};
-        case Occlusion::Transparent: return orderedTransmittance(p, l, dist, inside);
+        case Occlusion::Transparent: break;
       }
     }
+    const Vec3 p = offsetRayOrigin(sp, n, l);
+    if constexpr ((E & kAreaLights) != 0) {
+      if (light.area) return areaShadow(light, p, l, inside);
+    }
+    (void)light;
+    if (known != kUnknown) return orderedTransmittance(p, l, dist, inside);
     return segmentTransmittance(p, l, dist, inside);
   }
 
