@@ -280,19 +280,23 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
   return best;
 }
 
-// The packet version of traverse(): visits the leaves the cone may reach before `sHi`
-// (which the visitor may shrink), nearer child first along the split axis when the
-// packet's directions agree on it. `leaf(first, count)` returning true ends the walk.
-template <class Leaf>
-void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Leaf&& leaf) const {
+// The packet version of traverse(): visits the leaves that at least one ray of the packet
+// enters, nearer child first along the split axis when the packet's directions agree on
+// it. A box is first tested against the whole cone (cheap, and enough for a coherent
+// packet); one the cone may reach is then kept only if `enters(box)` finds a ray that
+// really enters it, so an incoherent packet never walks more of the tree than its rays
+// would one by one. `leaf(first, count, box)` returning true ends the walk.
+template <class Enters, class Leaf>
+void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const {
   if (nodes_.empty()) return;
   uint32_t stack[64];
   int top = 0;
   uint32_t node = 0;
   for (;;) {
     const BvhNode& n = nodes_[node];
+    const Bounds box = n.bounds();
     double nearS;
-    if (cone.mayHit(n.bounds(), sHi, nearS)) {
+    if (cone.mayHit(box, sHi, nearS) && enters(box)) {
       if (n.count == 0) {
         const uint32_t left = node + 1, right = n.rightOrFirst;
         const bool rightFirst = cone.sign(n.axis) < 0;
@@ -300,7 +304,7 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Leaf&& leaf)
         node = rightFirst ? right : left;
         continue;
       }
-      if (leaf(n.rightOrFirst, n.count)) return;
+      if (leaf(n.rightOrFirst, n.count, box)) return;
     }
     if (top == 0) return;
     node = stack[--top];
@@ -312,21 +316,24 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   double best[kMaxPacket];
   ShapeHit hits[kMaxPacket];
   bool changed[kMaxPacket];
-  int all[kMaxPacket];
+  int which[kMaxPacket];
   uint32_t owner[kMaxPacket];
+  Vec3 inv[kMaxPacket];
   for (int k = 0; k < count; ++k) {
     best[k] = tMax;
-    all[k] = k;
     owner[k] = kNone;
+    inv[k] = {1.0 / rays[k].dir.x, 1.0 / rays[k].dir.y, 1.0 / rays[k].dir.z};
   }
   // Unit directions from a common origin: the ray parameter t is the cone's s.
   const PacketCone cone(rays[0].origin, [&](int k) { return rays[k].dir; }, count, tMin);
   double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
-  auto intersectAll = [&](uint32_t i) {
-    tests += uint64_t(count);
+  // Tests the rays which[0..n) against primitive i.
+  auto intersect = [&](uint32_t i, int n) {
+    tests += uint64_t(n);
     const LeafItem& it = items_[i];
     if (it.isSphere) {
-      for (int k = 0; k < count; ++k) {
+      for (int j = 0; j < n; ++j) {
+        const int k = which[j];
         if (const auto h = intersectWorldSphere(it.sphere, it.unit, rays[k], tMin, best[k])) {
           best[k] = h->t;
           hits[k] = *h;
@@ -335,16 +342,27 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       }
       return;
     }
-    prims_[i].intersectEach(rays, all, count, tMin, best, hits, changed);
-    for (int k = 0; k < count; ++k)
-      if (changed[k]) owner[k] = i;
+    prims_[i].intersectEach(rays, which, n, tMin, best, hits, changed);
+    for (int j = 0; j < n; ++j)
+      if (changed[which[j]]) owner[which[j]] = i;
   };
-  traversePacket(cone, farthest, [&](uint32_t first, uint32_t n) {
-    for (uint32_t i = first; i < first + n; ++i) intersectAll(i);
+  auto enters = [&](const Bounds& box) {
+    for (int k = 0; k < count; ++k)
+      if (hitsBox(box, rays[k].origin, inv[k], tMin, best[k])) return true;
+    return false;
+  };
+  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const Bounds& box) {
+    // Only the rays that enter the leaf's box (for a leaf of one primitive the box test
+    // would cost about what the primitive's own test does: all of them).
+    int m = 0;
+    for (int k = 0; k < count; ++k)
+      if (n == 1 || hitsBox(box, rays[k].origin, inv[k], tMin, best[k])) which[m++] = k;
+    for (uint32_t i = first; i < first + n; ++i) intersect(i, m);
     farthest = *std::max_element(best, best + count);
     return false;
   });
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersectAll(i);
+  for (int k = 0; k < count; ++k) which[k] = k;
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i, count);
   for (int k = 0; k < count; ++k) {
     if (owner[k] == kNone) out[k].reset();
     else out[k] = ClosestHit{hits[k], owner[k]};
@@ -375,46 +393,66 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, c
 
 void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                           Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  int live[kMaxPacket];
+  int live[kMaxPacket], inBox[kMaxPacket];
   bool hit[kMaxPacket];
+  Vec3 inv[kMaxPacket];
   int n = count;
   for (int k = 0; k < count; ++k) {
     out[k] = Occlusion::Clear;
     live[k] = k;
+    inv[k] = {1.0 / segments[k].dir.x, 1.0 / segments[k].dir.y, 1.0 / segments[k].dir.z};
   }
   // The cone runs from the light back to each segment's start: s in [0, 1].
   const PacketCone cone(apex, [&](int k) { return segments[k].origin - apex; }, count, 0.0);
   const double sHi = 1.0;
-  // Tests every live segment against primitive i; an opaque hit retires the segment.
-  auto test = [&](uint32_t i) {
+  // Tests the segments rays[0..m) against primitive i; an opaque hit retires the
+  // segment (from `live`, which is compacted once the leaf is done).
+  auto test = [&](uint32_t i, const int* rays, int m) {
     const LeafItem& p = items_[i];
     if (p.noShadow) return;
-    tests += uint64_t(n);
+    tests += uint64_t(m);
     if (p.isSphere) {
-      for (int j = 0; j < n; ++j)
-        hit[j] = bool(intersectWorldSphere(p.sphere, p.unit, segments[live[j]], tMin, tMax[live[j]]));
+      for (int j = 0; j < m; ++j)
+        hit[j] = out[rays[j]] != Occlusion::Blocked &&
+                 bool(intersectWorldSphere(p.sphere, p.unit, segments[rays[j]], tMin, tMax[rays[j]]));
     } else {
-      prims_[i].hitsEach(segments, live, n, tMin, tMax, hit);
+      prims_[i].hitsEach(segments, rays, m, tMin, tMax, hit);
     }
-    int kept = 0;
-    for (int j = 0; j < n; ++j) {
-      const int k = live[j];
-      if (hit[j] && p.opaque) {
-        out[k] = Occlusion::Blocked;
-        blocker[k] = i;
-        continue;
+    for (int j = 0; j < m; ++j) {
+      if (!hit[j] || out[rays[j]] == Occlusion::Blocked) continue;
+      if (p.opaque) {
+        out[rays[j]] = Occlusion::Blocked;
+        blocker[rays[j]] = i;
+      } else {
+        out[rays[j]] = Occlusion::Transparent;
       }
-      if (hit[j]) out[k] = Occlusion::Transparent;
-      live[kept++] = k;
     }
+  };
+  auto compact = [&] {
+    int kept = 0;
+    for (int j = 0; j < n; ++j)
+      if (out[live[j]] != Occlusion::Blocked) live[kept++] = live[j];
     n = kept;
   };
-  traversePacket(cone, sHi, [&](uint32_t first, uint32_t count) {
-    for (uint32_t i = first; i < first + count && n > 0; ++i) test(i);
+  auto enters = [&](const Bounds& box) {
+    for (int j = 0; j < n; ++j)
+      if (hitsBox(box, segments[live[j]].origin, inv[live[j]], tMin, tMax[live[j]])) return true;
+    return false;
+  };
+  traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t count, const Bounds& box) {
+    int m = 0;
+    for (int j = 0; j < n; ++j)
+      if (count == 1 || hitsBox(box, segments[live[j]].origin, inv[live[j]], tMin, tMax[live[j]]))
+        inBox[m++] = live[j];
+    for (uint32_t i = first; i < first + count; ++i) test(i, inBox, m);
+    compact();
     return n == 0;
   });
-  for (uint32_t i = boundedCount_; i < prims_.size() && n > 0; ++i)
-    if (!planeSeparates(prims_[i], apex, segments, live, n)) test(i);
+  for (uint32_t i = boundedCount_; i < prims_.size() && n > 0; ++i) {
+    if (planeSeparates(prims_[i], apex, segments, live, n)) continue;
+    test(i, live, n);
+    compact();
+  }
 }
 
 }  // namespace pvrt

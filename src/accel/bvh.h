@@ -78,8 +78,8 @@ class Bvh {
                        Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
 
  private:
-  template <class Leaf>
-  void traversePacket(const PacketCone& cone, const double& sHi, Leaf&& leaf) const;
+  template <class Enters, class Leaf>
+  void traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const;
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
