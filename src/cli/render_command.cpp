@@ -157,8 +157,9 @@ Prepared prepare(const RenderOptions& o) {
   RenderSettings& s = p.settings;
   s.width = o.width > 0 ? o.width : (p.desc.image ? p.desc.image->width : 320);
   s.height = o.height > 0 ? o.height : (p.desc.image ? p.desc.image->height : 240);
-  if (long(s.width) * s.height > (1L << 28))
-    throw Error(ExitCode::Usage, fmt::format("image of {} x {} pixels is too large", s.width, s.height));
+  if (static_cast<long long>(s.width) * s.height > ImageDesc::kMaxPixels)
+    throw Error(ExitCode::Usage, fmt::format("pvrt: error: image of {} x {} pixels is more than {}", s.width,
+                                             s.height, ImageDesc::kMaxPixels));
   s.sampler.kind = parseSamplerKind(o.samplerName);
   s.sampler.samplesPerPixel = o.aaDepth > 0 ? o.aaDepth * o.aaDepth : o.spp;
   s.sampler.seed = o.seed;

@@ -30,9 +30,9 @@ foreach(scene ${PVRT_BAD_SCENES})
   pvrt_expect_error(${name} 3 "^.*${name}\\.xml:[0-9]+: [a-z_]+: "
     $<TARGET_FILE:pvrt> render ${scene} -o ${PVRT_E2E_DIR}/${name}.png -W 8 -H 8 --quiet)
 endforeach()
-pvrt_expect_error(missing_file 3 "no-such\\.xml: cannot read"
+pvrt_expect_error(missing_file 3 "no-such\\.xml: error: cannot read"
   $<TARGET_FILE:pvrt> render ${BAD}/no-such.xml -o ${PVRT_E2E_DIR}/missing_file.png)
-pvrt_expect_error(directory_as_scene 3 "bad: cannot read"
+pvrt_expect_error(directory_as_scene 3 "bad: error: cannot read"
   $<TARGET_FILE:pvrt> render ${BAD} -o ${PVRT_E2E_DIR}/directory_as_scene.png)
 pvrt_expect_error(bad_extension 2 "unsupported image format"
   $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/bad_extension.bmp)
