@@ -1,5 +1,7 @@
 #include "scene/xml_attributes.h"
 
+#include "scene/xml_document.h"
+
 #include <tinyxml2.h>
 
 #include <algorithm>
@@ -62,21 +64,20 @@ std::string attr(const char* name) { return "attribute '" + std::string(name) + 
 std::string printable(std::string_view text, size_t max) {
   std::string out;
   size_t i = 0;
-  for (; i < text.size() && out.size() < max; ++i) {
+  while (i < text.size() && out.size() < max) {
     const auto c = static_cast<unsigned char>(text[i]);
+    const size_t len = utf8SequenceLength(text, i);
     if (c == '\n') out += "\\n";
     else if (c == '\t') out += "\\t";
     else if (c == '\r') out += "\\r";
-    else if (c < 0x20 || c == 0x7f) {
+    else if (c >= 0x20 && c != 0x7f && len > 0) out.append(text.substr(i, len));
+    else {  // a control character, or a byte that is not UTF-8
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02x", c);
       out += hex;
-    } else {
-      out += char(c);
     }
+    i += std::max<size_t>(len, 1);
   }
-  // Finish a UTF-8 character cut in the middle (continuation bytes are 10xxxxxx).
-  while (i < text.size() && (static_cast<unsigned char>(text[i]) & 0xc0) == 0x80) out += text[i++];
   if (i < text.size()) out += "...";
   return out;
 }

@@ -23,6 +23,14 @@ std::string readSceneBytes(const std::string& path);
 // other than tab, newline and carriage return, or a malformed UTF-8 sequence), else npos.
 size_t firstNonTextByte(std::string_view bytes);
 
+// The length of the valid UTF-8 sequence starting at s[i], or 0 when it is not one.
+size_t utf8SequenceLength(std::string_view s, size_t i);
+
+// The offset of the first character reference (`&#0;`, `&#xD800;`) to a code point that
+// XML does not allow, else npos. tinyxml2 would decode `&#0;` into a NUL that silently cuts
+// the attribute value short.
+size_t firstBadCharacterReference(std::string_view bytes);
+
 // Parses `bytes` into `doc`; `name` stands for the file in messages.
 void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name);
 

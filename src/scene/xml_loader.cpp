@@ -72,6 +72,12 @@ class Loader {
   SceneDesc load(const tinyxml2::XMLDocument& doc) {
     const XMLElement* root = doc.RootElement();
     if (!root) throw sceneError({file_, 1}, "scene", "the file has no <scene> element");
+    // tinyxml2 keeps whatever follows the root; XML allows only comments there.
+    for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
+      if (n->ToUnknown()) throw sceneError({file_, n->GetLineNum()}, "xml", "<!DOCTYPE> and other <!...> are not supported");
+      if (n->ToElement() && n != root)
+        throw sceneError(locOf(n->ToElement()), printable(n->Value()), "a second root element (only one <scene> is allowed)");
+    }
     if (std::strcmp(root->Name(), "scene") != 0)
       throw sceneError(locOf(root), printable(root->Name()), "the root element must be <scene>");
     attrs(root).done();
@@ -118,10 +124,13 @@ class Loader {
     if (seen) throw errorAt(e, "may appear only once");
     seen = true;
   }
-  // Character data is never meaningful in the format; it is almost always a typo.
+  // Character data is never meaningful in the format; it is almost always a typo. Nor are
+  // <!...> declarations, which tinyxml2 keeps as unknown nodes.
   void noText(const XMLElement* e) const {
     for (const tinyxml2::XMLNode* n = e->FirstChild(); n; n = n->NextSibling())
-      if (const auto* t = n->ToText()) {
+      if (n->ToUnknown() || n->ToDeclaration()) {
+        throw sceneError({file_, n->GetLineNum()}, "xml", "<!...> and <?...?> are not allowed inside elements");
+      } else if (const auto* t = n->ToText()) {
         const std::string_view s = t->Value();
         const size_t from = s.find_first_not_of(" \t\r\n");
         if (from == std::string_view::npos) continue;

@@ -42,6 +42,33 @@ TEST(XmlBadInput, BytesThatAreNotTextAreRefusedWithTheirLine) {
   EXPECT_EQ(errorOf("\x89PNG\r\n\x1a\n"), "t.xml:1: error: xml: byte 0x89 is not UTF-8 text (save the file as UTF-8)");
 }
 
+TEST(XmlBadInput, CharacterReferencesToNonCharactersAreRefused) {
+  // tinyxml2 would decode &#0; into a NUL that silently cuts "10" to "1".
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#0;0\"/>")),
+            "t.xml:2: error: xml: character reference &#0; is not an XML character");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"&#xD800;\"/>")),
+            "t.xml:2: error: xml: character reference &#xD800; is not an XML character");
+  EXPECT_EQ(errorOf("<scene>\n\n<sphere center=\"0 0 0\" radius=\"&#x110000;\"/></scene>"),
+            "t.xml:3: error: xml: character reference &#x110000; is not an XML character");
+  // Inside comments they are not references; good ones are decoded.
+  EXPECT_NO_THROW(loadSceneString("<scene><!-- &#0; --><sphere center=\"0 0 0\" radius=\"&#x31;&#48;\"/></scene>"));
+  EXPECT_EQ(std::get<SphereDesc>(loadSceneString("<scene><sphere center=\"0 0 0\" radius=\"&#x31;&#48;\"/></scene>")
+                                     .objects.at(0)
+                                     .shape)
+                .radius,
+            10);
+}
+
+TEST(XmlBadInput, OnlyOneRootAndNoDeclarationsInside) {
+  EXPECT_EQ(errorOf("<scene/>\n<scene><sphre/></scene>"),
+            "t.xml:2: error: scene: a second root element (only one <scene> is allowed)");
+  EXPECT_EQ(errorOf("<!DOCTYPE scene [<!ENTITY r \"1\">]>\n<scene/>"),
+            "t.xml:1: error: xml: <!DOCTYPE> and other <!...> are not supported");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\"><!ELEMENT x></sphere>")),
+            "t.xml:2: error: xml: <!...> and <?...?> are not allowed inside elements");
+  EXPECT_NO_THROW(loadSceneString("<!-- before --><scene/><!-- after -->"));
+}
+
 TEST(XmlBadInput, Utf8TextIsAllowedAndQuotedIntact) {
   EXPECT_EQ(firstNonTextByte("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8e\xa8\t\r\n"), std::string_view::npos);
   EXPECT_EQ(errorOf(inScene("<sph\xc3\xa8re/>")),
@@ -59,8 +86,8 @@ TEST(XmlBadInput, DeepNestingIsAnErrorNotAStackOverflow) {
 TEST(XmlBadInput, MessagesStayOnOneLineAndShort) {
   EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\n2\"/>")),
             "t.xml:2: error: sphere: attribute 'radius' must be one number, got \"1\\n2\"");
-  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#1;\"/>")),
-            "t.xml:2: error: sphere: attribute 'radius': \"1\\x01\" is not a number");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#127;\"/>")),
+            "t.xml:2: error: sphere: attribute 'radius': \"1\\x7f\" is not a number");
   const std::string longValue(100000, 'x');
   EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"" + longValue + "\"/>")),
             "t.xml:2: error: sphere: attribute 'radius': \"" + std::string(40, 'x') + "...\" is not a number");
@@ -76,6 +103,7 @@ TEST(XmlBadInput, PrintableCutsOnCharacterBoundaries) {
   EXPECT_EQ(printable("ab\xc3\xa9z", 3), "ab\xc3\xa9...");
   EXPECT_EQ(printable("a\x7f", 10), "a\\x7f");
   EXPECT_EQ(printable("", 10), "");
+  EXPECT_EQ(printable("a\xff\xc3", 10), "a\\xff\\xc3");  // not UTF-8: escaped, never copied
 }
 
 TEST(XmlBadInput, ImageSizeAndPixelCount) {

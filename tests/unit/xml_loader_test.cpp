@@ -960,11 +960,11 @@ TEST(XmlLoader, ErrorBadBoolean) {
 TEST(XmlLoader, ErrorMalformedXml) {
   // tinyxml2 names the line of the element left open.
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT)");
+                     "t.xml:2: error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: an element not closed, or closed with another name)");
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=\"0 0 0\" center=\"1 1 1\" radius=\"1\"/>\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE)");
+                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, or without quotes or '=')");
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=0 radius=\"1\"/>\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE)");
+                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, or without quotes or '=')");
   EXPECT_SCENE_ERROR("sphere { <0, 0, 0>, 1 }", "t.xml:1: error: xml: malformed XML (XML_ERROR_PARSING)");
   EXPECT_SCENE_ERROR("<scene>\n<sphere/>\n", "t.xml:1: error: xml: malformed XML (XML_ERROR_PARSING)");
 }
