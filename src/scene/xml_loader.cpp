@@ -188,6 +188,9 @@ class Loader {
     if (a.has("angle")) {
       c.angle = a.number("angle");
       if (!(*c.angle > 0 && *c.angle < 180)) throw a.error("attribute 'angle' must lie between 0 and 180 degrees");
+      // The direction's length is |right| / (2 tan(angle/2)): below about 1e-150 degrees its
+      // square overflows, rays turn to NaN and the render never ends.
+      if (*c.angle < 1e-6) throw a.error("attribute 'angle' must be at least 1e-6 degrees, got " + printable(e->Attribute("angle")));
     }
     a.done();
     if (dot(cross(c.up, c.right), cross(c.up, c.right)) == 0)
@@ -324,9 +327,10 @@ class Loader {
     f.ambient = a.color("ambient", f.ambient);
     f.emission = a.color("emission", f.emission);
     f.diffuse = a.number("diffuse", f.diffuse);
-    f.brilliance = a.number("brilliance", f.brilliance);
+    // Exponents of a cosine: negative ones are infinite at grazing angles.
+    f.brilliance = a.nonNegative("brilliance", f.brilliance);
     f.phong = a.number("phong", f.phong);
-    f.phongSize = a.number("phong_size", f.phongSize);
+    f.phongSize = a.nonNegative("phong_size", f.phongSize);
     f.specular = a.number("specular", f.specular);
     f.roughness = a.positive("roughness", f.roughness);
     f.metallic = a.number("metallic", f.metallic);
@@ -361,6 +365,8 @@ class Loader {
     InteriorDesc in;
     in.loc = a.loc();
     in.ior = a.positive("ior", in.ior);
+    // Far beyond any material; at about 1e9 the refraction overflows to infinite pixels.
+    if (in.ior > 1000) throw a.error("attribute 'ior' must be at most 1000, got " + printable(e->Attribute("ior")));
     in.fadeDistance = a.nonNegative("fade_distance", in.fadeDistance);
     in.fadePower = a.nonNegative("fade_power", in.fadePower);
     in.fadeColor = a.color("fade_color", in.fadeColor);

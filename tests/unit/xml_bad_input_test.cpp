@@ -128,6 +128,21 @@ TEST(XmlBadInput, TransformsThatTogetherLeaveTheRange) {
   EXPECT_NO_THROW(loadSceneString(inScene("<plane><scale v=\"1e7\"/><scale v=\"1e7\"/></plane>")));
 }
 
+// Each of these rendered NaN, infinite pixels or never finished before the loader refused it
+// (found by the mutation test).
+TEST(XmlBadInput, ValuesThatBrokeTheRenderer) {
+  EXPECT_EQ(errorOf(inScene("<camera angle=\"1e-300\"/>")),
+            "t.xml:2: error: camera: attribute 'angle' must be at least 1e-6 degrees, got 1e-300");
+  EXPECT_NO_THROW(loadSceneString(inScene("<camera angle=\"1e-6\"/>")));
+  EXPECT_EQ(errorOf(inScene("<plane><finish brilliance=\"-1e15\"/></plane>")),
+            "t.xml:2: error: finish: attribute 'brilliance' must not be negative, got -1e15");
+  EXPECT_EQ(errorOf(inScene("<plane><finish phong_size=\"-2\"/></plane>")),
+            "t.xml:2: error: finish: attribute 'phong_size' must not be negative, got -2");
+  EXPECT_EQ(errorOf(inScene("<plane><interior ior=\"2147483648\"/></plane>")),
+            "t.xml:2: error: interior: attribute 'ior' must be at most 1000, got 2147483648");
+  EXPECT_NO_THROW(loadSceneString(inScene("<plane><interior ior=\"1000\"/><finish brilliance=\"0\" phong_size=\"0\"/></plane>")));
+}
+
 TEST(XmlBadInput, FilesThatCannotBeRead) {
   EXPECT_THROW(readSceneBytes("/dev/null/x"), Error);
   try {
