@@ -75,6 +75,8 @@ class Loader {
     // tinyxml2 keeps whatever follows the root; XML allows only comments there.
     for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
       if (n->ToUnknown()) throw sceneError({file_, n->GetLineNum()}, "xml", "<!DOCTYPE> and other <!...> are not supported");
+      if (n->ToDeclaration() && n != doc.FirstChild())
+        throw sceneError({file_, n->GetLineNum()}, "xml", "the <?xml ...?> declaration may appear only once, first");
       if (n->ToElement() && n != root)
         throw sceneError(locOf(n->ToElement()), printable(n->Value()), "a second root element (only one <scene> is allowed)");
     }

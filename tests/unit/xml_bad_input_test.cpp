@@ -66,6 +66,8 @@ TEST(XmlBadInput, OnlyOneRootAndNoDeclarationsInside) {
             "t.xml:1: error: xml: <!DOCTYPE> and other <!...> are not supported");
   EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\"><!ELEMENT x></sphere>")),
             "t.xml:2: error: xml: <!...> and <?...?> are not allowed inside elements");
+  EXPECT_EQ(errorOf("<?xml version=\"1.0\"?>\n<?xml version=\"1.0\"?>\n<scene/>"),
+            "t.xml:2: error: xml: the <?xml ...?> declaration may appear only once, first");
   EXPECT_NO_THROW(loadSceneString("<!-- before --><scene/><!-- after -->"));
 }
 
