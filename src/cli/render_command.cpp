@@ -1,4 +1,7 @@
 // `pvrt render SCENE -o OUT`: the paper's "input, output, optional saved configuration".
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <csignal>
 #include <chrono>
@@ -27,8 +30,24 @@ namespace pvrt::cli {
 
 namespace {
 
+// Ctrl-C and SIGTERM stop the render at the next tile; nothing is written and pvrt exits
+// with 130. A second signal ends the process at once (still with 130; an image being
+// written then leaves its temporary file, as SIGKILL does).
 std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+extern "C" void onInterrupt(int) {
+  if (gInterrupted.exchange(true)) _exit(int(ExitCode::Interrupted));
+}
+void catchInterrupts() {
+  struct sigaction sa {};
+  sa.sa_handler = onInterrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+int interrupted() {
+  std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
+  return int(ExitCode::Interrupted);
+}
 
 struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
@@ -189,18 +208,17 @@ Prepared prepare(const RenderOptions& o) {
 
 int runLocal(const RenderOptions& o) {
   const auto start = Clock::now();
+  // Caught from the start, so an interrupt while a big scene loads also exits with 130.
+  catchInterrupts();
   Prepared p = prepare(o);
+  if (gInterrupted) return interrupted();
   const RenderSettings& s = p.settings;
   ProgressBar bar(!o.quiet);
   p.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
   const RenderResult r = render(p.scene, s);
   bar.finish();
-  if (r.cancelled || gInterrupted) {
-    std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
-    return int(ExitCode::Interrupted);
-  }
+  if (r.cancelled || gInterrupted) return interrupted();
+  // From here on an interrupt lets the (atomic) write finish: the image is complete.
   const auto t2 = Clock::now();
   writeImage(r.image, o.output);
   if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.load, s.width, s.height);

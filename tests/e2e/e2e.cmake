@@ -105,3 +105,12 @@ pvrt_expect_error(too_many_pixels 2 "image of 65536 x 65536 pixels is more than"
 pvrt_expect_error(unknown_schedule 2 "unknown schedule" ARGS render ${PVRT_PAPER1} --schedule fastest)
 # The output cannot be written: exit code 4.
 pvrt_expect_error(output_dir_missing 4 "no such directory" ABSENT nope ARGS render ${PVRT_PAPER1} -o <DIR>/nope/out.png)
+
+# Interrupted renders: Ctrl-C (SIGINT) and SIGTERM exit with 130 within 2 s and write nothing;
+# SIGKILL writes nothing either (interrupt.sh).
+foreach(sig INT TERM KILL)
+  add_test(NAME e2e.interrupt.${sig}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/interrupt.sh ${sig} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
+            ${PVRT_E2E_DIR}/interrupt/${sig})
+  set_tests_properties(e2e.interrupt.${sig} PROPERTIES LABELS e2e TIMEOUT 120)
+endforeach()
