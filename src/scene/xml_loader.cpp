@@ -74,11 +74,12 @@ class Loader {
     if (!root) throw sceneError({file_, 1}, "scene", "the file has no <scene> element");
     // tinyxml2 keeps whatever follows the root; XML allows only comments there.
     for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
-      if (n->ToUnknown()) throw sceneError({file_, n->GetLineNum()}, "xml", "<!DOCTYPE> and other <!...> are not supported");
+      const SourceLoc at{file_, n->GetLineNum()};
+      if (n->ToUnknown()) throw sceneError(at, "xml", "<!DOCTYPE> and other <!...> are not supported");
       if (n->ToDeclaration() && n != doc.FirstChild())
-        throw sceneError({file_, n->GetLineNum()}, "xml", "the <?xml ...?> declaration may appear only once, first");
+        throw sceneError(at, "xml", "the <?xml ...?> declaration may appear only once, first");
       if (n->ToElement() && n != root)
-        throw sceneError(locOf(n->ToElement()), printable(n->Value()), "a second root element (only one <scene> is allowed)");
+        throw sceneError(at, printable(n->Value()), "a second root element (only one <scene> is allowed)");
     }
     if (std::strcmp(root->Name(), "scene") != 0)
       throw sceneError(locOf(root), printable(root->Name()), "the root element must be <scene>");
@@ -192,7 +193,8 @@ class Loader {
       if (!(*c.angle > 0 && *c.angle < 180)) throw a.error("attribute 'angle' must lie between 0 and 180 degrees");
       // The direction's length is |right| / (2 tan(angle/2)): below about 1e-150 degrees its
       // square overflows, rays turn to NaN and the render never ends.
-      if (*c.angle < 1e-6) throw a.error("attribute 'angle' must be at least 1e-6 degrees, got " + printable(e->Attribute("angle")));
+      if (*c.angle < 1e-6)
+        throw a.error("attribute 'angle' must be at least 1e-6 degrees, got " + printable(e->Attribute("angle")));
     }
     a.done();
     if (dot(cross(c.up, c.right), cross(c.up, c.right)) == 0)

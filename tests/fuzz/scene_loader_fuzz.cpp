@@ -15,7 +15,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string name = "fuzz.xml";
   try {
-    const pvrt::Scene scene = pvrt::buildScene(pvrt::loadSceneString(std::string(reinterpret_cast<const char*>(data), size), name));
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    const pvrt::Scene scene = pvrt::buildScene(pvrt::loadSceneString(text, name));
   } catch (const pvrt::Error& e) {
     const std::string m = e.what();
     const size_t colon = m.find(':', name.size() + 1);
