@@ -1,4 +1,7 @@
 // `pvrt render SCENE -o OUT`: the paper's "input, output, optional saved configuration".
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <csignal>
 #include <chrono>
@@ -28,8 +31,24 @@ namespace pvrt::cli {
 
 namespace {
 
+// Ctrl-C and SIGTERM stop the render at the next tile; nothing is written and pvrt exits
+// with 130. A second signal ends the process at once (still with 130; an image being
+// written then leaves its temporary file, as SIGKILL does).
 std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+extern "C" void onInterrupt(int) {
+  if (gInterrupted.exchange(true)) _exit(int(ExitCode::Interrupted));
+}
+void catchInterrupts() {
+  struct sigaction sa {};
+  sa.sa_handler = onInterrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+int interrupted() {
+  std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
+  return int(ExitCode::Interrupted);
+}
 
 struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
@@ -164,8 +183,9 @@ Prepared prepare(const RenderOptions& o) {
   RenderSettings& s = p.settings;
   s.width = o.width > 0 ? o.width : (p.desc.image ? p.desc.image->width : 320);
   s.height = o.height > 0 ? o.height : (p.desc.image ? p.desc.image->height : 240);
-  if (long(s.width) * s.height > (1L << 28))
-    throw Error(ExitCode::Usage, fmt::format("image of {} x {} pixels is too large", s.width, s.height));
+  if (static_cast<long long>(s.width) * s.height > ImageDesc::kMaxPixels)
+    throw Error(ExitCode::Usage, fmt::format("pvrt: error: image of {} x {} pixels is more than {}", s.width,
+                                             s.height, ImageDesc::kMaxPixels));
   s.sampler.kind = parseSamplerKind(o.samplerName);
   s.sampler.samplesPerPixel = o.aaDepth > 0 ? o.aaDepth * o.aaDepth : o.spp;
   s.sampler.seed = o.seed;
@@ -195,9 +215,10 @@ Prepared prepare(const RenderOptions& o) {
 
 int runLocal(const RenderOptions& o) {
   const auto start = Clock::now();
+  // Caught from the start, so an interrupt while a big scene loads also exits with 130.
+  catchInterrupts();
   Prepared p = prepare(o);
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
+  if (gInterrupted) return interrupted();
   if (o.hasTimeBudget) {
     const BudgetPlan plan = planForBudget(p.scene, p.settings, o.timeBudget);
     p.settings.sampler.samplesPerPixel = plan.samplesPerPixel;
@@ -213,10 +234,8 @@ int runLocal(const RenderOptions& o) {
   p.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
   const RenderResult r = render(p.scene, s);
   bar.finish();
-  if (r.cancelled || gInterrupted) {
-    std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
-    return int(ExitCode::Interrupted);
-  }
+  if (r.cancelled || gInterrupted) return interrupted();
+  // From here on an interrupt lets the (atomic) write finish: the image is complete.
   const auto t2 = Clock::now();
   writeImage(r.image, o.output);
   if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.load, s.width, s.height);

@@ -27,9 +27,15 @@ class Error : public std::runtime_error {
   ExitCode code_;
 };
 
-// `file:line: element: what is wrong` (compiler style, so editors can jump to it)
+// `file:line: error: element: what is wrong`: compiler style, so editors and CI log
+// scanners that look for `: error:` jump to it. `element` and `what` must be one line.
 inline Error sceneError(const SourceLoc& loc, const std::string& element, const std::string& what) {
-  return Error(ExitCode::SceneError, loc.str() + ": " + element + ": " + what);
+  return Error(ExitCode::SceneError, loc.str() + ": error: " + element + ": " + what);
+}
+
+// `file: error: what is wrong`, for a scene that could not be read at all (no line to name).
+inline Error sceneFileError(const std::string& file, const std::string& what) {
+  return Error(ExitCode::SceneError, file + ": error: " + what);
 }
 
 }  // namespace pvrt

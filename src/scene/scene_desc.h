@@ -55,6 +55,8 @@ struct GlobalSettings {
 
 // Default image settings a scene may carry (POV-Ray keeps these on its command line).
 struct ImageDesc {
+  // Most pixels an image may have (2^28): the colour buffer alone is then 6 GiB.
+  static constexpr long long kMaxPixels = 1LL << 28;
   int width = 320;
   int height = 240;
   SourceLoc loc;

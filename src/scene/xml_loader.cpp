@@ -4,18 +4,15 @@
 
 #include <tinyxml2.h>
 
-#include <algorithm>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <map>
 #include <set>
-#include <sstream>
 #include <string_view>
-#include <sys/stat.h>
 
 #include "core/error.h"
+#include "scene/xml_attributes.h"
+#include "scene/xml_document.h"
 
 namespace pvrt {
 
@@ -23,170 +20,50 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-// Splits "1 2 3" or "1, 2, 3" into its words.
-std::vector<std::string> words(const char* text) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (const char* p = text; *p; ++p) {
-    if (*p == ' ' || *p == ',' || *p == '\t' || *p == '\n' || *p == '\r') {
-      if (!cur.empty()) out.push_back(std::move(cur));
-      cur.clear();
-    } else {
-      cur += *p;
-    }
-  }
-  if (!cur.empty()) out.push_back(std::move(cur));
-  return out;
+// Every attribute each element may carry (docs/scene-format.md). The readers below check
+// the values; this table lets a misspelt name be refused before any value is read.
+const std::vector<std::string_view>& knownAttributes(std::string_view element) {
+  static const std::map<std::string_view, std::vector<std::string_view>> table = [] {
+    const std::vector<std::string_view> object{"material", "no_shadow"};
+    auto shape = [&](std::vector<std::string_view> own) {
+      own.insert(own.end(), object.begin(), object.end());
+      return own;
+    };
+    return std::map<std::string_view, std::vector<std::string_view>>{
+        {"scene", {}},
+        {"image", {"width", "height"}},
+        {"global_settings", {"max_trace_level", "adc_bailout", "ambient_light"}},
+        {"background", {"color"}},
+        {"camera", {"location", "direction", "up", "right", "sky", "look_at", "angle"}},
+        {"light_source", {"location", "color", "fade_distance", "fade_power", "shadowless"}},
+        {"spotlight", {"point_at", "radius", "falloff", "tightness"}},
+        {"area_light", {"axis1", "axis2", "size1", "size2", "adaptive", "circular", "orient"}},
+        {"material", {"name"}},
+        {"pigment", {"color", "filter", "transmit"}},
+        {"checker", {"color1", "filter1", "transmit1", "color2", "filter2", "transmit2"}},
+        {"finish", {"ambient", "emission", "diffuse", "brilliance", "phong", "phong_size", "specular", "roughness",
+                    "metallic", "conserve_energy", "reflection"}},
+        {"reflection", {"min", "max", "falloff", "fresnel", "exponent", "metallic"}},
+        {"interior", {"ior", "fade_distance", "fade_power", "fade_color"}},
+        {"sphere", shape({"center", "radius"})},
+        {"plane", shape({"normal", "distance"})},
+        {"box", shape({"corner1", "corner2"})},
+        {"cylinder", shape({"base", "cap", "radius", "open"})},
+        {"cone", shape({"base", "base_radius", "cap", "cap_radius", "open"})},
+        {"disc", shape({"center", "normal", "radius", "hole_radius"})},
+        {"triangle", shape({"p1", "p2", "p3"})},  // inside a mesh, done() refuses the object ones
+        {"smooth_triangle", shape({"p1", "n1", "p2", "n2", "p3", "n3"})},
+        {"mesh", object},
+        {"scale", {"v"}},
+        {"rotate", {"v"}},
+        {"translate", {"v"}},
+        {"matrix", {"v"}},
+    };
+  }();
+  static const std::vector<std::string_view> none;
+  const auto it = table.find(element);
+  return it == table.end() ? none : it->second;
 }
-
-// For a number that std::from_chars read whole but found out of range: whether it is too
-// large (rather than too small) for a double. Out-of-range magnitudes lie above 1e308 or
-// below 1e-323, so the rough decimal exponent (digits before the point, less the zeros
-// after it, plus the written exponent) tells them apart.
-bool overflows(std::string_view w) {
-  if (!w.empty() && w[0] == '-') w.remove_prefix(1);
-  const size_t e = std::min(w.find_first_of("eE"), w.size());
-  const std::string_view mantissa = w.substr(0, e);
-  const size_t point = std::min(mantissa.find('.'), mantissa.size());
-  const std::string_view whole = mantissa.substr(0, point);
-  long long order = 0;
-  if (const size_t nz = whole.find_first_not_of('0'); nz != std::string_view::npos) {
-    order = static_cast<long long>(whole.size() - nz);
-  } else if (point < mantissa.size()) {
-    const std::string_view frac = mantissa.substr(point + 1);
-    order = -static_cast<long long>(std::min(frac.find_first_not_of('0'), frac.size()));
-  }
-  if (e + 1 < w.size()) {
-    std::string_view exp = w.substr(e + 1);
-    const bool negative = exp[0] == '-';
-    if (exp[0] == '-' || exp[0] == '+') exp.remove_prefix(1);
-    long long x = 0;
-    if (std::from_chars(exp.data(), exp.data() + exp.size(), x).ec != std::errc()) x = 1'000'000'000;
-    order += negative ? -std::min(x, 1'000'000'000LL) : std::min(x, 1'000'000'000LL);
-  }
-  return order > 0;
-}
-
-// The attributes of one element. Each read marks its attribute as used, so that
-// whatever is left over at the end is an unknown attribute and an error.
-class Attributes {
- public:
-  Attributes(const XMLElement* e, const std::string& file) : e_(e), file_(file) {}
-
-  SourceLoc loc() const { return {file_, e_->GetLineNum()}; }
-  Error error(const std::string& what) const { return sceneError(loc(), e_->Name(), what); }
-
-  bool has(const char* name) { used_.insert(name); return e_->Attribute(name) != nullptr; }
-
-  double number(const char* name, double fallback) { return has(name) ? number(name) : fallback; }
-  double number(const char* name) {
-    const auto w = wordsOf(name);
-    if (w.size() != 1) throw error(attr(name) + " must be one number, got \"" + raw(name) + "\"");
-    return parseNumber(name, w[0]);
-  }
-  // A non-negative number.
-  double nonNegative(const char* name, double fallback) {
-    const double v = number(name, fallback);
-    if (v < 0) throw error(attr(name) + " must not be negative, got " + raw(name));
-    return v;
-  }
-  double positive(const char* name, std::optional<double> fallback = std::nullopt) {
-    if (!fallback && !has(name)) throw missing(name);
-    const double v = number(name, fallback.value_or(0));
-    if (!(v > 0)) throw error(attr(name) + " must be positive, got " + raw(name));
-    return v;
-  }
-  double required(const char* name) {
-    if (!has(name)) throw missing(name);
-    return number(name);
-  }
-
-  int integer(const char* name, int fallback, int lo, int hi) {
-    if (!has(name)) return fallback;
-    const std::string text = raw(name);
-    long long v = 0;
-    const char* end = text.data() + text.size();
-    auto [p, ec] = std::from_chars(text.data(), end, v);
-    if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == end && (v < lo || v > hi)))
-      throw error(attr(name) + " must be an integer from " + std::to_string(lo) + " to " +
-                  std::to_string(hi) + ", got " + text);
-    if (ec != std::errc() || p != end) throw error(attr(name) + " must be an integer, got \"" + text + "\"");
-    return int(v);
-  }
-
-  Vec3 vec(const char* name, Vec3 fallback) { return has(name) ? vec(name) : fallback; }
-  Vec3 vec(const char* name) {
-    if (!has(name)) throw missing(name);
-    const auto w = wordsOf(name);
-    if (w.size() != 3) throw error(attr(name) + " must be a vector of 3 numbers, got \"" + raw(name) + "\"");
-    return {parseNumber(name, w[0]), parseNumber(name, w[1]), parseNumber(name, w[2])};
-  }
-  Vec3 nonZeroVec(const char* name, std::optional<Vec3> fallback = std::nullopt) {
-    const Vec3 v = fallback ? vec(name, *fallback) : vec(name);
-    if (dot(v, v) == 0) throw error(attr(name) + " must not be the zero vector");
-    return v;
-  }
-  // "x y z", or one number for all three (scale 2 = scale <2,2,2>).
-  Vec3 vecOrScalar(const char* name) {
-    if (!has(name)) throw missing(name);
-    const auto w = wordsOf(name);
-    if (w.size() == 1) return Vec3(parseNumber(name, w[0]));
-    return vec(name);
-  }
-  // Colours are "r g b", or one number for a grey.
-  Color color(const char* name, Color fallback) {
-    if (!has(name)) return fallback;
-    const Vec3 v = vecOrScalar(name);
-    return {v.x, v.y, v.z};
-  }
-
-  bool boolean(const char* name, bool fallback) {
-    if (!has(name)) return fallback;
-    const std::string v = raw(name);
-    if (v == "true") return true;
-    if (v == "false") return false;
-    throw error(attr(name) + " must be true or false, got \"" + v + "\"");
-  }
-
-  std::string text(const char* name) {
-    if (!has(name)) throw missing(name);
-    return raw(name);
-  }
-
-  // Call after reading: any attribute not read is unknown.
-  void done() const {
-    for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next())
-      if (!used_.count(a->Name())) throw error("unknown attribute '" + std::string(a->Name()) + "'");
-  }
-
-  Error missing(const char* name) const { return error("missing required attribute '" + std::string(name) + "'"); }
-
-  double parseNumber(const char* name, const std::string& w) const {
-    double v = 0;
-    const char* begin = w.data();
-    if (*begin == '+') ++begin;
-    const char* end = w.data() + w.size();
-    auto [p, ec] = std::from_chars(begin, end, v);
-    // from_chars leaves `v` untouched when out of range, so tell underflow (a number too
-    // tiny for a double: zero) from overflow (an error) by its decimal exponent.
-    if (ec == std::errc::result_out_of_range && p == end && !overflows(std::string_view(begin, end)))
-      ec = std::errc();
-    if (ec == std::errc::result_out_of_range)
-      throw error(attr(name) + ": " + w + " is out of range");
-    if (ec != std::errc() || p != end) throw error(attr(name) + ": \"" + w + "\" is not a number");
-    if (!std::isfinite(v)) throw error(attr(name) + ": " + w + " is not a finite number");
-    return v;
-  }
-
- private:
-  std::string raw(const char* name) const { return e_->Attribute(name); }
-  static std::string attr(const char* name) { return "attribute '" + std::string(name) + "'"; }
-  std::vector<std::string> wordsOf(const char* name) { return words(e_->Attribute(name)); }
-
-  const XMLElement* e_;
-  const std::string& file_;
-  std::set<std::string> used_;
-};
 
 class Loader {
  public:
@@ -195,9 +72,18 @@ class Loader {
   SceneDesc load(const tinyxml2::XMLDocument& doc) {
     const XMLElement* root = doc.RootElement();
     if (!root) throw sceneError({file_, 1}, "scene", "the file has no <scene> element");
+    // tinyxml2 keeps whatever follows the root; XML allows only comments there.
+    for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
+      const SourceLoc at{file_, n->GetLineNum()};
+      if (n->ToUnknown()) throw sceneError(at, "xml", "<!DOCTYPE> and other <!...> are not supported");
+      if (n->ToDeclaration() && n != doc.FirstChild())
+        throw sceneError(at, "xml", "the <?xml ...?> declaration may appear only once, first");
+      if (n->ToElement() && n != root)
+        throw sceneError(at, printable(n->Value()), "a second root element (only one <scene> is allowed)");
+    }
     if (std::strcmp(root->Name(), "scene") != 0)
-      throw sceneError(locOf(root), root->Name(), "the root element must be <scene>");
-    Attributes(root, file_).done();
+      throw sceneError(locOf(root), printable(root->Name()), "the root element must be <scene>");
+    attrs(root).done();
     noText(root);
     scene_.path = file_;
     bool haveCamera = false, haveGlobals = false, haveBackground = false;
@@ -212,7 +98,7 @@ class Loader {
         scene_.globals = globals(e);
       } else if (name == "background") {
         once(e, haveBackground);
-        Attributes a(e, file_);
+        Attributes a = attrs(e);
         scene_.background = a.color("color", {0, 0, 0});
         a.done();
         noChildren(e);
@@ -233,43 +119,52 @@ class Loader {
  private:
   SourceLoc locOf(const XMLElement* e) const { return {file_, e->GetLineNum()}; }
   Error errorAt(const XMLElement* e, const std::string& what) const {
-    return sceneError(locOf(e), e->Name(), what);
+    return sceneError(locOf(e), printable(e->Name()), what);
   }
+  Attributes attrs(const XMLElement* e) const { return Attributes(e, file_, knownAttributes(e->Name())); }
 
   void once(const XMLElement* e, bool& seen) const {
     if (seen) throw errorAt(e, "may appear only once");
     seen = true;
   }
-  // Character data is never meaningful in the format; it is almost always a typo.
+  // Character data is never meaningful in the format; it is almost always a typo. Nor are
+  // <!...> declarations, which tinyxml2 keeps as unknown nodes.
   void noText(const XMLElement* e) const {
     for (const tinyxml2::XMLNode* n = e->FirstChild(); n; n = n->NextSibling())
-      if (const auto* t = n->ToText()) {
-        const std::string s = t->Value();
-        if (s.find_first_not_of(" \t\r\n") != std::string::npos)
-          throw errorAt(e, "unexpected text \"" + s.substr(s.find_first_not_of(" \t\r\n"), 20) + "\"");
+      if (n->ToUnknown() || n->ToDeclaration()) {
+        throw sceneError({file_, n->GetLineNum()}, "xml", "<!...> and <?...?> are not allowed inside elements");
+      } else if (const auto* t = n->ToText()) {
+        const std::string_view s = t->Value();
+        const size_t from = s.find_first_not_of(" \t\r\n");
+        if (from == std::string_view::npos) continue;
+        const size_t to = s.find_last_not_of(" \t\r\n");
+        throw errorAt(e, "unexpected text \"" + printable(s.substr(from, to + 1 - from), 20) + "\"");
       }
   }
   void noChildren(const XMLElement* e) const {
     noText(e);
     if (const XMLElement* c = e->FirstChildElement())
-      throw sceneError(locOf(c), c->Name(), std::string("unexpected element inside <") + e->Name() + ">");
+      throw errorAt(c, std::string("unexpected element inside <") + e->Name() + ">");
   }
 
   ImageDesc image(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     ImageDesc d;
     d.loc = a.loc();
     if (!a.has("width")) throw a.missing("width");
     if (!a.has("height")) throw a.missing("height");
     d.width = a.integer("width", 0, 1, 65536);
     d.height = a.integer("height", 0, 1, 65536);
+    if (static_cast<long long>(d.width) * d.height > ImageDesc::kMaxPixels)
+      throw a.error(std::to_string(d.width) + " x " + std::to_string(d.height) + " pixels is more than " +
+                    std::to_string(ImageDesc::kMaxPixels));
     a.done();
     noChildren(e);
     return d;
   }
 
   GlobalSettings globals(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     GlobalSettings g;
     g.loc = a.loc();
     g.maxTraceLevel = a.integer("max_trace_level", g.maxTraceLevel, 1, 256);
@@ -281,7 +176,7 @@ class Loader {
   }
 
   CameraDesc camera(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     CameraDesc c;
     c.loc = a.loc();
     c.location = a.vec("location", c.location);
@@ -296,6 +191,10 @@ class Loader {
     if (a.has("angle")) {
       c.angle = a.number("angle");
       if (!(*c.angle > 0 && *c.angle < 180)) throw a.error("attribute 'angle' must lie between 0 and 180 degrees");
+      // The direction's length is |right| / (2 tan(angle/2)): below about 1e-150 degrees its
+      // square overflows, rays turn to NaN and the render never ends.
+      if (*c.angle < 1e-6)
+        throw a.error("attribute 'angle' must be at least 1e-6 degrees, got " + printable(e->Attribute("angle")));
     }
     a.done();
     if (dot(cross(c.up, c.right), cross(c.up, c.right)) == 0)
@@ -305,7 +204,7 @@ class Loader {
   }
 
   LightDesc light(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     LightDesc l;
     l.loc = a.loc();
     l.location = a.vec("location");
@@ -317,7 +216,9 @@ class Loader {
     noText(e);
     for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string name = c->Name();
-      Attributes b(c, file_);
+      if (name != "spotlight" && name != "area_light")
+        throw errorAt(c, "unknown element inside <light_source> (expected spotlight or area_light)");
+      Attributes b = attrs(c);
       if (name == "spotlight") {
         if (l.spot) throw errorAt(c, "may appear only once");
         SpotlightDesc s;
@@ -342,8 +243,6 @@ class Loader {
         if ((d.circular || d.orient) && (d.size1 < 2 || d.size2 < 2))
           throw b.error("a circular or oriented area light needs size1 and size2 of at least 2");
         l.area = d;
-      } else {
-        throw errorAt(c, "unknown element inside <light_source> (expected spotlight or area_light)");
       }
       b.done();
       noChildren(c);
@@ -352,14 +251,14 @@ class Loader {
   }
 
   MaterialDesc namedMaterial(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     MaterialDesc m;
     m.loc = a.loc();
     m.name = a.text("name");
     if (m.name.empty() || m.name.find_first_not_of(
                               "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") !=
                               std::string::npos)
-      throw a.error("material names use letters, digits and '_' only, got \"" + m.name + "\"");
+      throw a.error("material names use letters, digits and '_' only, got \"" + printable(m.name) + "\"");
     for (const MaterialDesc& other : scene_.materials)
       if (other.name == m.name)
         throw a.error("material '" + m.name + "' is already defined at line " + std::to_string(other.loc.line));
@@ -400,7 +299,7 @@ class Loader {
   }
 
   PigmentDesc pigment(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     PigmentDesc p;
     p.loc = a.loc();
     p.color = filterColor(a, "color", "filter", "transmit", p.color);
@@ -413,7 +312,7 @@ class Loader {
       if (p.checker) throw errorAt(c, "may appear only once");
       if (e->Attribute("color") || e->Attribute("filter") || e->Attribute("transmit"))
         throw errorAt(c, "a checker pigment takes its colours from <checker>, not from <pigment>");
-      Attributes b(c, file_);
+      Attributes b = attrs(c);
       CheckerDesc k;
       k.color1 = filterColor(b, "color1", "filter1", "transmit1", k.color1);
       k.color2 = filterColor(b, "color2", "filter2", "transmit2", k.color2);
@@ -426,15 +325,16 @@ class Loader {
   }
 
   FinishDesc finish(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     FinishDesc f;
     f.loc = a.loc();
     f.ambient = a.color("ambient", f.ambient);
     f.emission = a.color("emission", f.emission);
     f.diffuse = a.number("diffuse", f.diffuse);
-    f.brilliance = a.number("brilliance", f.brilliance);
+    // Exponents of a cosine: negative ones are infinite at grazing angles.
+    f.brilliance = a.nonNegative("brilliance", f.brilliance);
     f.phong = a.number("phong", f.phong);
-    f.phongSize = a.number("phong_size", f.phongSize);
+    f.phongSize = a.nonNegative("phong_size", f.phongSize);
     f.specular = a.number("specular", f.specular);
     f.roughness = a.positive("roughness", f.roughness);
     f.metallic = a.number("metallic", f.metallic);
@@ -450,7 +350,7 @@ class Loader {
       if (std::strcmp(c->Name(), "reflection") != 0)
         throw errorAt(c, "unknown element inside <finish> (expected reflection)");
       if (flat) throw errorAt(c, "give reflection either as an attribute or as an element, not both");
-      Attributes b(c, file_);
+      Attributes b = attrs(c);
       ReflectionDesc& r = f.reflection;
       r.min = b.color("min", r.min);
       r.max = b.color("max", r.min);  // one value means the same at every angle
@@ -465,10 +365,12 @@ class Loader {
   }
 
   InteriorDesc interior(const XMLElement* e) {
-    Attributes a(e, file_);
+    Attributes a = attrs(e);
     InteriorDesc in;
     in.loc = a.loc();
     in.ior = a.positive("ior", in.ior);
+    // Far beyond any material; at about 1e9 the refraction overflows to infinite pixels.
+    if (in.ior > 1000) throw a.error("attribute 'ior' must be at most 1000, got " + printable(e->Attribute("ior")));
     in.fadeDistance = a.nonNegative("fade_distance", in.fadeDistance);
     in.fadePower = a.nonNegative("fade_power", in.fadePower);
     in.fadeColor = a.color("fade_color", in.fadeColor);
@@ -486,7 +388,7 @@ class Loader {
     else if (name == "translate") s.kind = TransformStep::Kind::Translate;
     else if (name == "matrix") s.kind = TransformStep::Kind::Matrix;
     else return false;
-    Attributes a(c, file_);
+    Attributes a = attrs(c);
     s.loc = a.loc();
     if (s.kind == TransformStep::Kind::Matrix) {
       if (!a.has("v")) throw a.missing("v");
@@ -515,14 +417,31 @@ class Loader {
     return list;
   }
 
+  // The product must be invertible, and neither it nor its inverse may reach beyond
+  // kMaxSceneNumber: each step is in range, but many of them could multiply to inf.
   void checkSingular(const XMLElement* e, const TransformList& list) const {
-    if (!list.empty() && !list.combined().inverse())
-      throw errorAt(e, "its transforms together are singular");
+    if (list.empty()) return;
+    const Affine m = list.combined();
+    const auto inverse = m.inverse();
+    if (!inverse) throw errorAt(e, "its transforms together are singular");
+    auto bounded = [](const Affine& a) {
+      bool ok = std::fabs(a.t.x) <= kMaxSceneNumber && std::fabs(a.t.y) <= kMaxSceneNumber &&
+                std::fabs(a.t.z) <= kMaxSceneNumber;
+      for (const auto& row : a.m)
+        for (double v : row) ok = ok && std::fabs(v) <= kMaxSceneNumber;
+      return ok;
+    };
+    if (!bounded(m) || !bounded(*inverse))
+      throw errorAt(e, "its transforms together scale by more than 1e15 or less than 1e-15, or move by more than 1e15");
   }
 
   ObjectDesc object(const XMLElement* e) {
     const std::string name = e->Name();
-    Attributes a(e, file_);
+    static const std::set<std::string> shapes{"sphere", "plane", "box", "cylinder", "cone", "disc",
+                                              "triangle", "smooth_triangle", "mesh"};
+    if (!shapes.count(name))
+      throw errorAt(e, "unknown element (expected camera, light_source, material, an object, ...)");
+    Attributes a = attrs(e);
     ObjectDesc o;
     o.loc = a.loc();
     if (name == "sphere") {
@@ -567,16 +486,14 @@ class Loader {
       o.shape = triangle(a);
     } else if (name == "smooth_triangle") {
       o.shape = smoothTriangle(a);
-    } else if (name == "mesh") {
-      o.shape = MeshDesc{};
     } else {
-      throw errorAt(e, "unknown element (expected camera, light_source, material, an object, ...)");
+      o.shape = MeshDesc{};
     }
     if (a.has("material")) {
       const std::string ref = a.text("material");
       for (size_t i = 0; i < scene_.materials.size(); ++i)
         if (scene_.materials[i].name == ref) o.namedMaterial = int(i);
-      if (o.namedMaterial < 0) throw a.error("no material named '" + ref + "' is defined before it");
+      if (o.namedMaterial < 0) throw a.error("no material named '" + printable(ref) + "' is defined before it");
       o.material = scene_.materials[size_t(o.namedMaterial)];
     }
     o.noShadow = a.boolean("no_shadow", false);
@@ -588,14 +505,15 @@ class Loader {
       noText(c);
       if (transformStep(c, o.transforms)) continue;
       if (auto* mesh = std::get_if<MeshDesc>(&o.shape)) {
-        Attributes b(c, file_);
         if (std::strcmp(c->Name(), "triangle") == 0) {
+          Attributes b = attrs(c);
           mesh->triangles.push_back(triangle(b));
           b.done();
           noChildren(c);
           continue;
         }
         if (std::strcmp(c->Name(), "smooth_triangle") == 0) {
+          Attributes b = attrs(c);
           mesh->smoothTriangles.push_back(smoothTriangle(b));
           b.done();
           noChildren(c);
@@ -636,35 +554,18 @@ class Loader {
   SceneDesc scene_;
 };
 
-SceneDesc parse(const std::string& xml, const std::string& name, const std::string& path) {
+SceneDesc parse(std::string_view bytes, const std::string& name) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    const int line = std::max(1, doc.ErrorLineNum());
-    std::string what = doc.ErrorID() == tinyxml2::XML_ERROR_EMPTY_DOCUMENT ? "the file is empty"
-                                                                         : "malformed XML";
-    if (doc.ErrorID() != tinyxml2::XML_ERROR_EMPTY_DOCUMENT) what += std::string(" (") + doc.ErrorName() + ")";
-    throw sceneError({name, line}, "xml", what);
-  }
+  parseDocument(doc, bytes, name);
   SceneDesc s = Loader(name).load(doc);
-  s.path = path;
+  s.path = name;
   return s;
 }
 
 }  // namespace
 
-SceneDesc loadSceneString(const std::string& xml, const std::string& name) { return parse(xml, name, name); }
+SceneDesc loadSceneString(const std::string& xml, const std::string& name) { return parse(xml, name); }
 
-SceneDesc loadSceneFile(const std::string& path) {
-  struct stat st {};
-  if (stat(path.c_str(), &st) != 0)
-    throw Error(ExitCode::SceneError, path + ": cannot read scene: " + std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) throw Error(ExitCode::SceneError, path + ": cannot read scene: it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ExitCode::SceneError, path + ": cannot read scene: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(ExitCode::SceneError, path + ": cannot read scene: read error");
-  return parse(text.str(), path, path);
-}
+SceneDesc loadSceneFile(const std::string& path) { return parse(readSceneBytes(path), path); }
 
 }  // namespace pvrt

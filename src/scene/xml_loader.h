@@ -1,5 +1,5 @@
 // Reads pvrt's XML scene format (docs/scene-format.md) into a SceneDesc.
-// Every problem is reported as `file:line: element: what is wrong` through
+// Every problem is reported as one line, `file:line: error: element: what is wrong`, through
 // pvrt::Error with ExitCode::SceneError; nothing is half-loaded.
 #pragma once
 

@@ -17,62 +17,131 @@ foreach(sub render generate accuracy)
   set_tests_properties(e2e.help.${sub} PROPERTIES LABELS e2e PASS_REGULAR_EXPRESSION "Usage|Options")
 endforeach()
 
-# Bad input: one `file:line: element: what` line, a documented exit code, no output file.
+# Bad input: exactly one error line of a given form, a documented exit code, no crash and
+# nothing written (expect_error.sh). Each test has a folder of its own, so that "nothing
+# appeared beside the output" holds whatever runs in parallel.
 set(BAD ${CMAKE_CURRENT_SOURCE_DIR}/e2e/bad)
+set(PVRT_PAPER1 ${PROJECT_SOURCE_DIR}/scenes/paper1.xml)
+# pvrt_expect_error(NAME EXIT_CODE REGEX [EXISTING f...] [ABSENT f...] ARGS pvrt-arguments...)
+# File names are in the test's folder, which ARGS call <DIR>. Without EXISTING or ABSENT,
+# ARGS get `-o <DIR>/out.png` and out.png must stay absent.
 function(pvrt_expect_error name rc regex)
+  cmake_parse_arguments(E "" "" "EXISTING;ABSENT;ARGS" ${ARGN})
+  set(dir ${PVRT_E2E_DIR}/error/${name})
+  if(NOT E_EXISTING AND NOT E_ABSENT)
+    set(E_ABSENT out.png)
+    list(APPEND E_ARGS -o <DIR>/out.png)
+  endif()
+  set(files)
+  foreach(f ${E_EXISTING})
+    list(APPEND files --existing ${dir}/${f})
+  endforeach()
+  foreach(f ${E_ABSENT})
+    list(APPEND files --absent ${dir}/${f})
+  endforeach()
+  list(TRANSFORM E_ARGS REPLACE "<DIR>" ${dir})
   add_test(NAME e2e.error.${name}
-    COMMAND ${PVRT_EXPECT_ERROR} ${rc} ${regex} ${PVRT_E2E_DIR}/${name}.png -- ${ARGN})
-  set_tests_properties(e2e.error.${name} PROPERTIES LABELS e2e)
+    COMMAND ${PVRT_EXPECT_ERROR} ${rc} ${regex} ${dir} ${files} -- $<TARGET_FILE:pvrt> ${E_ARGS})
+  set_tests_properties(e2e.error.${name} PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60)
 endfunction()
+# A scene error names the scene, a line and an element: `.../NAME.xml:LINE: error: ELEMENT: what`.
+# The image already exists (and must be left as it was); the saved scene and the load map do
+# not (and must not appear). The scene's <image> is checked even though -W/-H replace it.
+function(pvrt_expect_scene_error name scene)
+  get_filename_component(file ${scene} NAME)
+  string(REPLACE "." "\\." file_regex ${file})
+  pvrt_expect_error(${name} 3 "^(.*/)?${file_regex}:[0-9]+: error: [^:]+: .+$"
+    EXISTING out.png ABSENT saved.xml map.exr map.png
+    ARGS render ${scene} -W 8 -H 8 --quiet -o <DIR>/out.png --save-scene <DIR>/saved.xml --load-map <DIR>/map)
+endfunction()
+
 file(GLOB PVRT_BAD_SCENES CONFIGURE_DEPENDS ${BAD}/*.xml)
 foreach(scene ${PVRT_BAD_SCENES})
   get_filename_component(name ${scene} NAME_WE)
-  pvrt_expect_error(${name} 3 "^.*${name}\\.xml:[0-9]+: [a-z_]+: "
-    $<TARGET_FILE:pvrt> render ${scene} -o ${PVRT_E2E_DIR}/${name}.png -W 8 -H 8 --quiet)
+  pvrt_expect_scene_error(${name} ${scene})
 endforeach()
-pvrt_expect_error(missing_file 3 "no-such\\.xml: cannot read"
-  $<TARGET_FILE:pvrt> render ${BAD}/no-such.xml -o ${PVRT_E2E_DIR}/missing_file.png)
-pvrt_expect_error(directory_as_scene 3 "bad: cannot read"
-  $<TARGET_FILE:pvrt> render ${BAD} -o ${PVRT_E2E_DIR}/directory_as_scene.png)
-pvrt_expect_error(bad_extension 2 "unsupported image format"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/bad_extension.bmp)
-pvrt_expect_error(spp_not_square 2 "perfect square"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/spp_not_square.png --spp 5)
-pvrt_expect_error(spp_zero 2 "spp"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/spp_zero.png --spp 0)
-pvrt_expect_error(unknown_schedule 2 "unknown schedule"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/unknown_schedule.png --schedule fastest)
-pvrt_expect_error(output_dir_missing 4 "no such directory"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/nope/output_dir_missing.png)
+# A few with no output file before the run: none after it either.
+foreach(name truncated_in_value nan_radius image_too_many_pixels binary_png_header)
+  pvrt_expect_error(${name}.no_output 3 "^.*/${name}\\.xml:[0-9]+: error: " ARGS render ${BAD}/${name}.xml)
+endforeach()
+
+# Bad scenes too big to keep in the repository, written at configure time.
+set(GEN ${PVRT_E2E_DIR}/generated-bad)
+string(REPEAT "<mesh>" 100000 deep)
+file(WRITE ${GEN}/nested_100000_deep.xml "<scene>${deep}")
+string(REPEAT "<plane/>" 20 planes)
+string(REPEAT "<scale v=\"1e3\"/>" 10 scales)
+file(WRITE ${GEN}/transforms_10_times_1e3.xml "<scene>${planes}<sphere center=\"0 0 0\" radius=\"1\">${scales}</sphere></scene>")
+string(REPEAT "0123456789" 100000 long)
+file(WRITE ${GEN}/attribute_value_1mb.xml "<scene><sphere center=\"0 0 0\" radius=\"${long}\"/></scene>")
+string(REPEAT "x" 100000 long)
+file(WRITE ${GEN}/element_name_100kb.xml "<scene>\n<${long}/></scene>")
+foreach(scene nested_100000_deep transforms_10_times_1e3 attribute_value_1mb element_name_100kb)
+  pvrt_expect_scene_error(${scene} ${GEN}/${scene}.xml)
+endforeach()
+
+# Scenes that cannot be read at all: `FILE: error: cannot read scene: why`.
+pvrt_expect_error(missing_file 3 "^.*/no-such\\.xml: error: cannot read scene: No such file or directory$"
+  ARGS render ${BAD}/no-such.xml)
+pvrt_expect_error(missing_directory 3 "^/nonexistent-dir/a\\.xml: error: cannot read scene: No such file or directory$"
+  ARGS render /nonexistent-dir/a.xml)
+pvrt_expect_error(directory_as_scene 3 "^.*/bad: error: cannot read scene: it is a directory$" ARGS render ${BAD})
+pvrt_expect_error(device_as_scene 3 "^/dev/zero: error: cannot read scene: not a regular file$" ARGS render /dev/zero)
+pvrt_expect_error(no_scene_given 2 "^pvrt: scene is required" ARGS render)
+# Unreadable: as root every file is readable, so the check runs as user nobody (or is skipped).
+add_test(NAME e2e.error.unreadable_scene
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/unreadable.sh ${PVRT_EXPECT_ERROR} $<TARGET_FILE:pvrt>
+          ${PVRT_E2E_DIR}/error/unreadable_scene)
+set_tests_properties(e2e.error.unreadable_scene PROPERTIES LABELS "e2e;bad-input" SKIP_RETURN_CODE 77 TIMEOUT 60)
+
+# Bad command lines: exit code 2.
+pvrt_expect_error(bad_extension 2 "unsupported image format" ABSENT out.bmp ARGS render ${PVRT_PAPER1} -o <DIR>/out.bmp)
+pvrt_expect_error(spp_not_square 2 "perfect square" ARGS render ${PVRT_PAPER1} --spp 5)
+pvrt_expect_error(spp_zero 2 "spp" ARGS render ${PVRT_PAPER1} --spp 0)
+pvrt_expect_error(width_zero 2 "width" ARGS render ${PVRT_PAPER1} -W 0)
+pvrt_expect_error(width_negative 2 "width" ARGS render ${PVRT_PAPER1} -W -5)
+pvrt_expect_error(width_2_pow_31 2 "width" ARGS render ${PVRT_PAPER1} -W 2147483648)
+pvrt_expect_error(too_many_pixels 2 "image of 65536 x 65536 pixels is more than" ARGS render ${PVRT_PAPER1} -W 65536 -H 65536)
+pvrt_expect_error(unknown_schedule 2 "unknown schedule" ARGS render ${PVRT_PAPER1} --schedule fastest)
+# The output cannot be written: exit code 4.
+pvrt_expect_error(output_dir_missing 4 "no such directory" ABSENT nope ARGS render ${PVRT_PAPER1} -o <DIR>/nope/out.png)
+
+# Interrupted renders: Ctrl-C (SIGINT) and SIGTERM exit with 130 within 2 s and write nothing;
+# SIGKILL writes nothing either (interrupt.sh).
+foreach(sig INT TERM KILL)
+  add_test(NAME e2e.interrupt.${sig}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/interrupt.sh ${sig} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
+            ${PVRT_E2E_DIR}/interrupt/${sig})
+  set_tests_properties(e2e.interrupt.${sig} PROPERTIES LABELS e2e TIMEOUT 120)
+endforeach()
 
 # `pvrt accuracy`: the settings asked for, and the readings with exact answers.
 add_test(NAME e2e.accuracy.table
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/accuracy_check.sh $<TARGET_FILE:pvrt>
-    ${PROJECT_SOURCE_DIR}/scenes/paper1.xml ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PVRT_E2E_DIR}/accuracy)
+    ${PVRT_PAPER1} ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PVRT_E2E_DIR}/accuracy)
 add_test(NAME e2e.accuracy.plot
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/accuracy_plot.sh $<TARGET_FILE:pvrt>
-    ${PROJECT_SOURCE_DIR}/scenes/paper1.xml ${PVRT_E2E_DIR}/accuracy-plot)
+    ${PVRT_PAPER1} ${PVRT_E2E_DIR}/accuracy-plot)
 set_tests_properties(e2e.accuracy.table e2e.accuracy.plot PROPERTIES LABELS e2e)
 set_tests_properties(e2e.accuracy.plot PROPERTIES SKIP_RETURN_CODE 77)
 pvrt_expect_error(accuracy_spp_not_square 2 "perfect square"
-  $<TARGET_FILE:pvrt> accuracy ${PROJECT_SOURCE_DIR}/scenes/paper1.xml --spp-list 1,5 --csv ${PVRT_E2E_DIR}/accuracy_spp_not_square.png)
+  ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} --spp-list 1,5 --csv <DIR>/out.csv)
 pvrt_expect_error(accuracy_unknown_sampler 2 "unknown sampler"
-  $<TARGET_FILE:pvrt> accuracy ${PROJECT_SOURCE_DIR}/scenes/paper1.xml --samplers pov,halton --csv ${PVRT_E2E_DIR}/accuracy_unknown_sampler.png)
+  ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} --samplers pov,halton --csv <DIR>/out.csv)
 pvrt_expect_error(accuracy_reference_size 2 "is 160 x 100, the render would be 100 x 100"
-  $<TARGET_FILE:pvrt> accuracy ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -W 100 -H 100
-    --reference ${PROJECT_SOURCE_DIR}/reference/paper1.png --csv ${PVRT_E2E_DIR}/accuracy_reference_size.png)
+  ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} -W 100 -H 100 --reference ${PROJECT_SOURCE_DIR}/reference/paper1.png
+  --csv <DIR>/out.csv)
 pvrt_expect_error(accuracy_plot_not_png 2 "--plot must name a .png"
-  $<TARGET_FILE:pvrt> accuracy ${PROJECT_SOURCE_DIR}/scenes/paper1.xml --plot ${PVRT_E2E_DIR}/accuracy_plot_not_png.pdf)
+  ABSENT out.pdf ARGS accuracy ${PVRT_PAPER1} --plot <DIR>/out.pdf)
 
 # `pvrt render --time-budget`: a square c is chosen and printed; budgets must be positive.
 add_test(NAME e2e.time_budget
-  COMMAND pvrt render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/time_budget.png -W 32 -H 20
-    --time-budget 0.2)
+  COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget.png -W 32 -H 20 --time-budget 0.2)
 set_tests_properties(e2e.time_budget PROPERTIES LABELS e2e
   PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: pilot 8 x 5 at c=[0-9]+ took [0-9.]+ s .*chose --spp [0-9]+ \\(predicted render")
 pvrt_expect_error(time_budget_zero 2 "--time-budget must be a positive number of seconds, got 0"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/time_budget_zero.png --time-budget 0)
+  ARGS render ${PVRT_PAPER1} --time-budget 0)
 pvrt_expect_error(time_budget_negative 2 "--time-budget must be a positive number of seconds, got -1"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/time_budget_negative.png --time-budget -1)
+  ARGS render ${PVRT_PAPER1} --time-budget -1)
 pvrt_expect_error(time_budget_with_spp 2 "excludes"
-  $<TARGET_FILE:pvrt> render ${PROJECT_SOURCE_DIR}/scenes/paper1.xml -o ${PVRT_E2E_DIR}/time_budget_with_spp.png --time-budget 1 --spp 4)
+  ARGS render ${PVRT_PAPER1} --time-budget 1 --spp 4)

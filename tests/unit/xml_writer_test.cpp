@@ -10,6 +10,7 @@
 #include <string>
 
 #include "generate/random_scene.h"
+#include "scene/xml_attributes.h"
 #include "scene/xml_loader.h"
 
 namespace pvrt {
@@ -333,7 +334,7 @@ TEST(XmlWriter, NumbersSurviveBitForBit) {
   const double third = 1.0 / 3.0;
   const double tiny = 1e-300;
   const double denormal = std::numeric_limits<double>::denorm_min();
-  const double huge = std::numeric_limits<double>::max();
+  const double huge = kMaxSceneNumber;  // the largest the loader accepts
   s.camera.location = {0.1, third, tiny};
   s.camera.angle = 0.1 + 0.2;  // 0.30000000000000004
   s.globals.adcBailout = third;
@@ -343,7 +344,7 @@ TEST(XmlWriter, NumbersSurviveBitForBit) {
   l.color = {2.0 / 3.0, 1e-7, 123456789.123456789};
   s.lights.push_back(l);
   ObjectDesc o;
-  o.shape = SphereDesc{{third, -third, 1e300}, third};
+  o.shape = SphereDesc{{third, -third, 9.999999999999999e14}, third};
   o.material.pigment.color = {{0.1, 0.7, 0.9999999999999999}, third, tiny};
   o.material.finish.diffuse = 0.1 * 3;
   TransformStep t{};

@@ -1,0 +1,224 @@
+#include "scene/xml_attributes.h"
+
+#include "scene/xml_document.h"
+
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace pvrt {
+
+namespace {
+
+// For a number that std::from_chars read whole but found out of range: whether it is too
+// large (rather than too small) for a double. Out-of-range magnitudes lie above 1e308 or
+// below 1e-323, so the rough decimal exponent (digits before the point, less the zeros
+// after it, plus the written exponent) tells them apart.
+bool overflows(std::string_view w) {
+  if (!w.empty() && w[0] == '-') w.remove_prefix(1);
+  const size_t e = std::min(w.find_first_of("eE"), w.size());
+  const std::string_view mantissa = w.substr(0, e);
+  const size_t point = std::min(mantissa.find('.'), mantissa.size());
+  const std::string_view whole = mantissa.substr(0, point);
+  long long order = 0;
+  if (const size_t nz = whole.find_first_not_of('0'); nz != std::string_view::npos) {
+    order = static_cast<long long>(whole.size() - nz);
+  } else if (point < mantissa.size()) {
+    const std::string_view frac = mantissa.substr(point + 1);
+    order = -static_cast<long long>(std::min(frac.find_first_not_of('0'), frac.size()));
+  }
+  if (e + 1 < w.size()) {
+    std::string_view exp = w.substr(e + 1);
+    const bool negative = exp[0] == '-';
+    if (exp[0] == '-' || exp[0] == '+') exp.remove_prefix(1);
+    long long x = 0;
+    if (std::from_chars(exp.data(), exp.data() + exp.size(), x).ec != std::errc()) x = 1'000'000'000;
+    order += negative ? -std::min(x, 1'000'000'000LL) : std::min(x, 1'000'000'000LL);
+  }
+  return order > 0;
+}
+
+// Edit distance, to suggest the known attribute a misspelt one was meant to be.
+size_t distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string attr(const char* name) { return "attribute '" + std::string(name) + "'"; }
+
+}  // namespace
+
+std::string printable(std::string_view text, size_t max) {
+  std::string out;
+  size_t i = 0;
+  while (i < text.size() && out.size() < max) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const size_t len = utf8SequenceLength(text, i);
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c == '\r') out += "\\r";
+    else if (c >= 0x20 && c != 0x7f && len > 0) out.append(text.substr(i, len));
+    else {  // a control character, or a byte that is not UTF-8
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    }
+    i += std::max<size_t>(len, 1);
+  }
+  if (i < text.size()) out += "...";
+  return out;
+}
+
+std::vector<std::string> words(const char* text) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (const char* p = text; *p; ++p) {
+    if (*p == ' ' || *p == ',' || *p == '\t' || *p == '\n' || *p == '\r') {
+      if (!cur.empty()) out.push_back(std::move(cur));
+      cur.clear();
+    } else {
+      cur += *p;
+    }
+  }
+  if (!cur.empty()) out.push_back(std::move(cur));
+  return out;
+}
+
+Attributes::Attributes(const tinyxml2::XMLElement* e, const std::string& file,
+                       const std::vector<std::string_view>& known)
+    : e_(e), file_(file) {
+  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) {
+    const std::string_view name = a->Name();
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string what = "unknown attribute '" + printable(name) + "'";
+    std::string_view best;
+    size_t bestDistance = 3;  // at most two edits away, and closer than any other
+    for (std::string_view k : known)
+      if (const size_t d = distance(name, k); d < bestDistance && d < k.size()) best = k, bestDistance = d;
+    if (!best.empty()) what += " (did you mean '" + std::string(best) + "'?)";
+    throw error(what);
+  }
+}
+
+SourceLoc Attributes::loc() const { return {file_, e_->GetLineNum()}; }
+Error Attributes::error(const std::string& what) const { return sceneError(loc(), printable(e_->Name()), what); }
+Error Attributes::missing(const char* name) const {
+  return error("missing required attribute '" + std::string(name) + "'");
+}
+std::string Attributes::raw(const char* name) const { return e_->Attribute(name); }
+
+bool Attributes::has(const char* name) {
+  used_.insert(name);
+  return e_->Attribute(name) != nullptr;
+}
+
+double Attributes::number(const char* name) {
+  if (!has(name)) throw missing(name);
+  const auto w = words(e_->Attribute(name));
+  if (w.size() != 1) throw error(attr(name) + " must be one number, got " + quoted(name));
+  return parseNumber(name, w[0]);
+}
+
+double Attributes::nonNegative(const char* name, double fallback) {
+  const double v = number(name, fallback);
+  if (v < 0) throw error(attr(name) + " must not be negative, got " + printable(raw(name)));
+  return v;
+}
+
+double Attributes::positive(const char* name, std::optional<double> fallback) {
+  if (!fallback && !has(name)) throw missing(name);
+  const double v = number(name, fallback.value_or(0));
+  if (!(v > 0)) throw error(attr(name) + " must be positive, got " + printable(raw(name)));
+  return v;
+}
+
+int Attributes::integer(const char* name, int fallback, int lo, int hi) {
+  if (!has(name)) return fallback;
+  const std::string text = raw(name);
+  long long v = 0;
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, v);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == end && (v < lo || v > hi)))
+    throw error(attr(name) + " must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                ", got " + printable(text));
+  if (ec != std::errc() || p != end) throw error(attr(name) + " must be an integer, got " + quoted(name));
+  return int(v);
+}
+
+Vec3 Attributes::vec(const char* name) {
+  if (!has(name)) throw missing(name);
+  const auto w = words(e_->Attribute(name));
+  if (w.size() != 3) throw error(attr(name) + " must be a vector of 3 numbers, got " + quoted(name));
+  return {parseNumber(name, w[0]), parseNumber(name, w[1]), parseNumber(name, w[2])};
+}
+
+Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
+  const Vec3 v = fallback ? vec(name, *fallback) : vec(name);
+  if (dot(v, v) == 0) throw error(attr(name) + " must not be the zero vector");
+  return v;
+}
+
+Vec3 Attributes::vecOrScalar(const char* name) {
+  if (!has(name)) throw missing(name);
+  const auto w = words(e_->Attribute(name));
+  if (w.size() == 1) return Vec3(parseNumber(name, w[0]));
+  return vec(name);
+}
+
+Color Attributes::color(const char* name, Color fallback) {
+  if (!has(name)) return fallback;
+  const Vec3 v = vecOrScalar(name);
+  return {v.x, v.y, v.z};
+}
+
+bool Attributes::boolean(const char* name, bool fallback) {
+  if (!has(name)) return fallback;
+  const std::string v = raw(name);
+  if (v == "true") return true;
+  if (v == "false") return false;
+  throw error(attr(name) + " must be true or false, got " + quoted(name));
+}
+
+std::string Attributes::text(const char* name) {
+  if (!has(name)) throw missing(name);
+  return raw(name);
+}
+
+void Attributes::done() const {
+  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next())
+    if (!used_.count(a->Name())) throw error("unknown attribute '" + printable(a->Name()) + "'");
+}
+
+double Attributes::parseNumber(const char* name, const std::string& w) const {
+  double v = 0;
+  const char* begin = w.data();
+  if (*begin == '+') ++begin;
+  const char* end = w.data() + w.size();
+  auto [p, ec] = std::from_chars(begin, end, v);
+  // from_chars leaves `v` untouched when out of range, so tell underflow (a number too
+  // tiny for a double: zero) from overflow (an error) by its decimal exponent.
+  if (ec == std::errc::result_out_of_range && p == end && !overflows(std::string_view(begin, end)))
+    ec = std::errc();
+  const std::string shown = printable(w);
+  const std::string range = " is out of range (at most 1e15 in magnitude)";
+  if (ec == std::errc::result_out_of_range) throw error(attr(name) + ": " + shown + range);
+  if (ec != std::errc() || p != end) throw error(attr(name) + ": \"" + shown + "\" is not a number");
+  if (!std::isfinite(v)) throw error(attr(name) + ": " + shown + " is not a finite number");
+  if (std::fabs(v) > kMaxSceneNumber) throw error(attr(name) + ": " + shown + range);
+  return v;
+}
+
+}  // namespace pvrt

@@ -1,0 +1,73 @@
+// One XML element's attributes read as the value types of docs/scene-format.md (numbers,
+// integers, vectors, colours, booleans, names), each checked as it is read. Every problem
+// becomes a one-line `file:line: error: element: what` pvrt::Error.
+#pragma once
+
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/vec3.h"
+
+namespace tinyxml2 {
+class XMLElement;
+}
+
+namespace pvrt {
+
+// The largest magnitude of a number in a scene. Beyond it a double no longer holds whole
+// units (2^53 is about 9e15), and squares and products of such numbers inside the
+// renderer could overflow to inf and turn into NaN pixels.
+inline constexpr double kMaxSceneNumber = 1e15;
+
+// `text` made safe for a one-line message: at most `max` bytes (cut on a character
+// boundary, "..." appended), control characters written as \n, \t, \r or \xNN.
+std::string printable(std::string_view text, size_t max = 40);
+
+// The words of "1 2 3" or "1, 2, 3".
+std::vector<std::string> words(const char* text);
+
+class Attributes {
+ public:
+  // `known`: every attribute the element may carry. Any other is refused here, before a
+  // value is read, so that a misspelt required attribute (`radus`) is reported as the
+  // unknown one, together with the name it resembles, not as a missing `radius`.
+  Attributes(const tinyxml2::XMLElement* e, const std::string& file, const std::vector<std::string_view>& known);
+
+  SourceLoc loc() const;
+  Error error(const std::string& what) const;
+  Error missing(const char* name) const;
+
+  bool has(const char* name);
+  double number(const char* name);
+  double number(const char* name, double fallback) { return has(name) ? number(name) : fallback; }
+  double nonNegative(const char* name, double fallback);
+  double positive(const char* name, std::optional<double> fallback = std::nullopt);
+  int integer(const char* name, int fallback, int lo, int hi);
+  Vec3 vec(const char* name);
+  Vec3 vec(const char* name, Vec3 fallback) { return has(name) ? vec(name) : fallback; }
+  Vec3 nonZeroVec(const char* name, std::optional<Vec3> fallback = std::nullopt);
+  Vec3 vecOrScalar(const char* name);  // "x y z", or one number for all three
+  Color color(const char* name, Color fallback);
+  bool boolean(const char* name, bool fallback);
+  std::string text(const char* name);
+  // One word of attribute `name` as a number: finite and within kMaxSceneNumber.
+  double parseNumber(const char* name, const std::string& word) const;
+
+  // Call after reading: an attribute present but not read is unknown in this context.
+  void done() const;
+
+ private:
+  std::string raw(const char* name) const;
+  std::string quoted(const char* name) const { return "\"" + printable(raw(name)) + "\""; }
+
+  const tinyxml2::XMLElement* e_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+}  // namespace pvrt

@@ -1,0 +1,160 @@
+#include "scene/xml_document.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <tinyxml2.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cctype>
+#include <cstring>
+#include <utility>
+
+#include "core/error.h"
+
+namespace pvrt {
+
+namespace {
+
+// Closes the descriptor on every path out, including exceptions.
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+std::string hexByte(unsigned char c) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "0x%02x", c);
+  return buf;
+}
+
+int lineAt(std::string_view bytes, size_t offset) {
+  return 1 + int(std::count(bytes.begin(), bytes.begin() + std::ptrdiff_t(offset), '\n'));
+}
+
+}  // namespace
+
+std::string readSceneBytes(const std::string& path) {
+  auto fail = [&](const std::string& why) { return sceneFileError(path, "cannot read scene: " + why); };
+  // open() then fstat() on the same descriptor, so the checks are about the file read.
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+  if (f.fd < 0) throw fail(std::strerror(errno));
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) throw fail(std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw fail("it is a directory");
+  if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) throw fail("not a regular file");
+  // O_NONBLOCK only kept open() from waiting for a FIFO's writer; reads should wait.
+  ::fcntl(f.fd, F_SETFL, ::fcntl(f.fd, F_GETFL) & ~O_NONBLOCK);
+  std::string bytes;
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(f.fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw fail(std::strerror(errno));
+    if (n == 0) break;
+    if (bytes.size() + size_t(n) > kMaxSceneBytes) throw fail("the file is larger than 1 GiB");
+    bytes.append(buf, size_t(n));
+  }
+  return bytes;
+}
+
+size_t utf8SequenceLength(std::string_view s, size_t i) {
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  const unsigned char c = p[i];
+  if (c < 0x80) return 1;
+  // Lead byte: the sequence length and the smallest code point it may encode (to refuse
+  // overlong forms); surrogates and values above U+10FFFF are refused too.
+  size_t len;
+  unsigned cp;
+  if (c >= 0xc2 && c <= 0xdf) len = 2, cp = c & 0x1f;
+  else if (c >= 0xe0 && c <= 0xef) len = 3, cp = c & 0x0f;
+  else if (c >= 0xf0 && c <= 0xf4) len = 4, cp = c & 0x07;
+  else return 0;
+  if (i + len > s.size()) return 0;
+  for (size_t k = 1; k < len; ++k) {
+    if ((p[i + k] & 0xc0) != 0x80) return 0;
+    cp = (cp << 6) | (p[i + k] & 0x3f);
+  }
+  static const unsigned minimum[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < minimum[len] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return 0;
+  return len;
+}
+
+size_t firstNonTextByte(std::string_view s) {
+  for (size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') return i;
+    const size_t len = utf8SequenceLength(s, i);
+    if (len == 0) return i;
+    i += len;
+  }
+  return std::string_view::npos;
+}
+
+size_t firstBadCharacterReference(std::string_view s) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    // References are not decoded inside comments and CDATA sections.
+    for (const auto& [open, close] : {std::pair{"<!--", "-->"}, std::pair{"<![CDATA[", "]]>"}})
+      if (s.compare(i, std::strlen(open), open) == 0) {
+        i = std::min(s.find(close, i), s.size());
+        break;
+      }
+    if (s.compare(i, 2, "&#") != 0) continue;
+    const bool hex = i + 2 < s.size() && s[i + 2] == 'x';
+    size_t j = i + (hex ? 3 : 2);
+    unsigned long cp = 0;
+    for (; j < s.size(); ++j) {
+      const auto d = static_cast<unsigned char>(s[j]);
+      unsigned digit;
+      if (std::isdigit(d)) digit = d - '0';
+      else if (hex && std::isxdigit(d)) digit = unsigned(std::tolower(d) - 'a' + 10);
+      else break;
+      cp = std::min(cp * (hex ? 16 : 10) + digit, 0x110000ul);  // capped: too large either way
+    }
+    if (j == i + (hex ? 3 : 2) || j >= s.size() || s[j] != ';') continue;  // not a reference: left as text
+    // XML 1.0's Char production.
+    const bool ok = cp == 0x9 || cp == 0xa || cp == 0xd || (cp >= 0x20 && cp <= 0xd7ff) ||
+                    (cp >= 0xe000 && cp <= 0xfffd) || (cp >= 0x10000 && cp <= 0x10ffff);
+    if (!ok) return i;
+  }
+  return std::string_view::npos;
+}
+
+void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
+  if (const size_t bad = firstNonTextByte(bytes); bad != std::string_view::npos) {
+    const auto c = static_cast<unsigned char>(bytes[bad]);
+    throw sceneError({name, lineAt(bytes, bad)}, "xml",
+                     c < 0x80 ? "control character " + hexByte(c) + " is not allowed (is this a binary file?)"
+                              : "byte " + hexByte(c) + " is not UTF-8 text (save the file as UTF-8)");
+  }
+  if (const size_t bad = firstBadCharacterReference(bytes); bad != std::string_view::npos) {
+    const std::string_view ref = bytes.substr(bad, std::min(bytes.find(';', bad) + 1, bad + 16) - bad);
+    throw sceneError({name, lineAt(bytes, bad)}, "xml",
+                     "character reference " + std::string(ref) + " is not an XML character");
+  }
+  if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) return;
+  const int line = std::max(1, doc.ErrorLineNum());
+  std::string what;
+  switch (doc.ErrorID()) {
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: what = "the file is empty"; break;
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
+      what = "elements nested more than " + std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) + " deep";
+      break;
+    default: {
+      // tinyxml2's names are terse; say what usually causes the commonest ones.
+      std::string hint;
+      if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_ATTRIBUTE)
+        hint = ": an attribute given twice, or without quotes or '='";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT)
+        hint = ": an element not closed, or closed with another name";
+      what = std::string("malformed XML (") + doc.ErrorName() + hint + ")";
+    }
+  }
+  throw sceneError({name, line}, "xml", what);
+}
+
+}  // namespace pvrt

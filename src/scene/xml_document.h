@@ -1,0 +1,37 @@
+// The loader's first stage: bytes in, a tinyxml2 document out, or one `file:line: error:`
+// pvrt::Error. Refuses what is not text before the XML parser sees it, so a binary file,
+// a file in another encoding or a file with NUL bytes gets a clear message.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace tinyxml2 {
+class XMLDocument;
+}
+
+namespace pvrt {
+
+// Larger scene files are refused rather than read (a FIFO could otherwise feed bytes for ever).
+inline constexpr size_t kMaxSceneBytes = size_t(1) << 30;
+
+// The whole file, or pvrt::Error(SceneError) saying why it cannot be read. Only regular
+// files and pipes are read (a directory or a device such as /dev/zero is refused).
+std::string readSceneBytes(const std::string& path);
+
+// The offset of the first byte that is not XML 1.0 text in UTF-8 (a control character
+// other than tab, newline and carriage return, or a malformed UTF-8 sequence), else npos.
+size_t firstNonTextByte(std::string_view bytes);
+
+// The length of the valid UTF-8 sequence starting at s[i], or 0 when it is not one.
+size_t utf8SequenceLength(std::string_view s, size_t i);
+
+// The offset of the first character reference (`&#0;`, `&#xD800;`) to a code point that
+// XML does not allow, else npos. tinyxml2 would decode `&#0;` into a NUL that silently cuts
+// the attribute value short.
+size_t firstBadCharacterReference(std::string_view bytes);
+
+// Parses `bytes` into `doc`; `name` stands for the file in messages.
+void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name);
+
+}  // namespace pvrt

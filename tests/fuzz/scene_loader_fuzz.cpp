@@ -1,0 +1,33 @@
+// libFuzzer target for the scene loader: the bytes are a scene file; it is loaded from
+// memory and built (the stage after loading: camera, lights, materials, BVH). Anything but
+// success or a pvrt::Error(SceneError) with a one-line `fuzz.xml:LINE: error: ` message is a
+// finding: a crash, a sanitizer report, another exception, or a malformed message.
+// Built with -DPVRT_FUZZ=ON by tools/fuzz.sh (clang only).
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/error.h"
+#include "render/scene.h"
+#include "scene/xml_loader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string name = "fuzz.xml";
+  try {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    const pvrt::Scene scene = pvrt::buildScene(pvrt::loadSceneString(text, name));
+  } catch (const pvrt::Error& e) {
+    const std::string m = e.what();
+    const size_t colon = m.find(':', name.size() + 1);
+    const bool located = m.compare(0, name.size() + 1, name + ":") == 0 && colon != std::string::npos &&
+                         colon > name.size() + 1 &&
+                         m.find_first_not_of("0123456789", name.size() + 1) == colon &&
+                         m.compare(colon, 9, ": error: ") == 0;
+    if (e.code() != pvrt::ExitCode::SceneError || !located || m.find('\n') != std::string::npos) {
+      std::fprintf(stderr, "bad error (exit code %d): %s\n", int(e.code()), m.c_str());
+      std::abort();
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,177 @@
+// Hostile input to the loader: bytes that are not text, absurd nesting, values that would
+// make messages span lines, numbers and transforms beyond what the renderer can hold.
+// Each must give exactly one `file:line: error:` line, never a crash.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "scene/xml_attributes.h"
+#include "scene/xml_document.h"
+#include "scene/xml_loader.h"
+
+namespace pvrt {
+namespace {
+
+std::string errorOf(const std::string& xml) {
+  try {
+    loadSceneString(xml, "t.xml");
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::SceneError);
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string inScene(const std::string& body) { return "<scene>\n" + body + "\n</scene>"; }
+
+TEST(XmlBadInput, BytesThatAreNotTextAreRefusedWithTheirLine) {
+  EXPECT_EQ(errorOf(std::string("<scene>\n<sphere/>\0</scene>", 26)),
+            "t.xml:2: error: xml: control character 0x00 is not allowed (is this a binary file?)");
+  EXPECT_EQ(errorOf("<scene>\n\n<sph\xff/></scene>"),
+            "t.xml:3: error: xml: byte 0xff is not UTF-8 text (save the file as UTF-8)");
+  // Latin-1 "é", an overlong "/" and a UTF-16 surrogate are not UTF-8 either.
+  EXPECT_EQ(errorOf("<scene><!-- caf\xe9 --></scene>"),
+            "t.xml:1: error: xml: byte 0xe9 is not UTF-8 text (save the file as UTF-8)");
+  const std::string notUtf8 = " is not UTF-8 text (save the file as UTF-8)";
+  EXPECT_EQ(errorOf("<scene>\xc0\xaf</scene>"), "t.xml:1: error: xml: byte 0xc0" + notUtf8);
+  EXPECT_EQ(errorOf("<scene>\xed\xa0\x80</scene>"), "t.xml:1: error: xml: byte 0xed" + notUtf8);
+  EXPECT_EQ(errorOf("\x89PNG\r\n\x1a\n"), "t.xml:1: error: xml: byte 0x89" + notUtf8);
+}
+
+TEST(XmlBadInput, CharacterReferencesToNonCharactersAreRefused) {
+  // tinyxml2 would decode &#0; into a NUL that silently cuts "10" to "1".
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#0;0\"/>")),
+            "t.xml:2: error: xml: character reference &#0; is not an XML character");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"&#xD800;\"/>")),
+            "t.xml:2: error: xml: character reference &#xD800; is not an XML character");
+  EXPECT_EQ(errorOf("<scene>\n\n<sphere center=\"0 0 0\" radius=\"&#x110000;\"/></scene>"),
+            "t.xml:3: error: xml: character reference &#x110000; is not an XML character");
+  // Inside comments they are not references; good ones are decoded.
+  EXPECT_NO_THROW(loadSceneString("<scene><!-- &#0; --><sphere center=\"0 0 0\" radius=\"&#x31;&#48;\"/></scene>"));
+  EXPECT_EQ(std::get<SphereDesc>(loadSceneString("<scene><sphere center=\"0 0 0\" radius=\"&#x31;&#48;\"/></scene>")
+                                     .objects.at(0)
+                                     .shape)
+                .radius,
+            10);
+}
+
+TEST(XmlBadInput, OnlyOneRootAndNoDeclarationsInside) {
+  EXPECT_EQ(errorOf("<scene/>\n<scene><sphre/></scene>"),
+            "t.xml:2: error: scene: a second root element (only one <scene> is allowed)");
+  EXPECT_EQ(errorOf("<!DOCTYPE scene [<!ENTITY r \"1\">]>\n<scene/>"),
+            "t.xml:1: error: xml: <!DOCTYPE> and other <!...> are not supported");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\"><!ELEMENT x></sphere>")),
+            "t.xml:2: error: xml: <!...> and <?...?> are not allowed inside elements");
+  EXPECT_EQ(errorOf("<?xml version=\"1.0\"?>\n<?xml version=\"1.0\"?>\n<scene/>"),
+            "t.xml:2: error: xml: the <?xml ...?> declaration may appear only once, first");
+  EXPECT_NO_THROW(loadSceneString("<!-- before --><scene/><!-- after -->"));
+}
+
+TEST(XmlBadInput, Utf8TextIsAllowedAndQuotedIntact) {
+  EXPECT_EQ(firstNonTextByte("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8e\xa8\t\r\n"), std::string_view::npos);
+  EXPECT_EQ(errorOf(inScene("<sph\xc3\xa8re/>")),
+            "t.xml:2: error: sph\xc3\xa8re: unknown element (expected camera, light_source, material, an object, ...)");
+  // A BOM is fine.
+  EXPECT_NO_THROW(loadSceneString("\xef\xbb\xbf<scene/>"));
+}
+
+TEST(XmlBadInput, DeepNestingIsAnErrorNotAStackOverflow) {
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += "<mesh>";
+  EXPECT_EQ(errorOf("<scene>" + deep), "t.xml:1: error: xml: elements nested more than 100 deep");
+}
+
+TEST(XmlBadInput, MessagesStayOnOneLineAndShort) {
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\n2\"/>")),
+            "t.xml:2: error: sphere: attribute 'radius' must be one number, got \"1\\n2\"");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#127;\"/>")),
+            "t.xml:2: error: sphere: attribute 'radius': \"1\\x7f\" is not a number");
+  const std::string longValue(100000, 'x');
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"" + longValue + "\"/>")),
+            "t.xml:2: error: sphere: attribute 'radius': \"" + std::string(40, 'x') + "...\" is not a number");
+  const std::string longName(1000, 'q');
+  EXPECT_EQ(errorOf(inScene("<" + longName + "/>")),
+            "t.xml:2: error: " + std::string(40, 'q') +
+                "...: unknown element (expected camera, light_source, material, an object, ...)");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\" material=\"a\tb\"/>")),
+            "t.xml:2: error: sphere: no material named 'a\\tb' is defined before it");
+}
+
+TEST(XmlBadInput, PrintableCutsOnCharacterBoundaries) {
+  EXPECT_EQ(printable("ab\xc3\xa9z", 3), "ab\xc3\xa9...");
+  EXPECT_EQ(printable("a\x7f", 10), "a\\x7f");
+  EXPECT_EQ(printable("", 10), "");
+  EXPECT_EQ(printable("a\xff\xc3", 10), "a\\xff\\xc3");  // not UTF-8: escaped, never copied
+}
+
+TEST(XmlBadInput, ImageSizeAndPixelCount) {
+  EXPECT_EQ(errorOf(inScene("<image width=\"-5\" height=\"10\"/>")),
+            "t.xml:2: error: image: attribute 'width' must be an integer from 1 to 65536, got -5");
+  EXPECT_EQ(errorOf(inScene("<image width=\"10\" height=\"2147483648\"/>")),
+            "t.xml:2: error: image: attribute 'height' must be an integer from 1 to 65536, got 2147483648");
+  EXPECT_EQ(errorOf(inScene("<image width=\"65536\" height=\"65536\"/>")),
+            "t.xml:2: error: image: 65536 x 65536 pixels is more than 268435456");
+  EXPECT_NO_THROW(loadSceneString(inScene("<image width=\"65536\" height=\"4096\"/>")));
+}
+
+TEST(XmlBadInput, TransformsThatTogetherLeaveTheRange) {
+  std::string scales;
+  for (int i = 0; i < 3; ++i) scales += "<scale v=\"1e6\"/>";
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\">" + scales + "</sphere>")),
+            "t.xml:2: error: sphere: its transforms together scale by more than 1e15 or less than 1e-15, or move "
+            "by more than 1e15");
+  EXPECT_EQ(errorOf(inScene("<plane><translate v=\"1e15 0 0\"/><translate v=\"1e15 0 0\"/></plane>")),
+            "t.xml:2: error: plane: its transforms together scale by more than 1e15 or less than 1e-15, or move "
+            "by more than 1e15");
+  EXPECT_NO_THROW(loadSceneString(inScene("<plane><scale v=\"1e7\"/><scale v=\"1e7\"/></plane>")));
+}
+
+// Each of these rendered NaN, infinite pixels or never finished before the loader refused it
+// (found by the mutation test).
+TEST(XmlBadInput, ValuesThatBrokeTheRenderer) {
+  EXPECT_EQ(errorOf(inScene("<camera angle=\"1e-300\"/>")),
+            "t.xml:2: error: camera: attribute 'angle' must be at least 1e-6 degrees, got 1e-300");
+  EXPECT_NO_THROW(loadSceneString(inScene("<camera angle=\"1e-6\"/>")));
+  EXPECT_EQ(errorOf(inScene("<plane><finish brilliance=\"-1e15\"/></plane>")),
+            "t.xml:2: error: finish: attribute 'brilliance' must not be negative, got -1e15");
+  EXPECT_EQ(errorOf(inScene("<plane><finish phong_size=\"-2\"/></plane>")),
+            "t.xml:2: error: finish: attribute 'phong_size' must not be negative, got -2");
+  EXPECT_EQ(errorOf(inScene("<plane><interior ior=\"2147483648\"/></plane>")),
+            "t.xml:2: error: interior: attribute 'ior' must be at most 1000, got 2147483648");
+  EXPECT_NO_THROW(
+      loadSceneString(inScene("<plane><interior ior=\"1000\"/><finish brilliance=\"0\" phong_size=\"0\"/></plane>")));
+}
+
+TEST(XmlBadInput, FilesThatCannotBeRead) {
+  EXPECT_THROW(readSceneBytes("/dev/null/x"), Error);
+  try {
+    readSceneBytes("/dev/zero");  // a device would be read for ever
+    ADD_FAILURE() << "read /dev/zero";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/zero: error: cannot read scene: not a regular file");
+  }
+  // An unreadable file (checked by opening, so it also holds for root's CAP_DAC_OVERRIDE
+  // when the file system refuses). Skipped when the process can read it anyway.
+  const std::string path = std::string(PVRT_BINARY_DIR) + "/unreadable-scene.xml";
+  std::ofstream(path) << "<scene/>";
+  ::chmod(path.c_str(), 0);
+  if (::access(path.c_str(), R_OK) == 0) {
+    std::remove(path.c_str());
+    GTEST_SKIP() << "running with the right to read any file (root): unreadable files cannot be made";
+  }
+  try {
+    loadSceneFile(path);
+    ADD_FAILURE() << "read an unreadable file";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": error: cannot read scene: Permission denied");
+  }
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace pvrt
