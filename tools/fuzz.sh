@@ -18,8 +18,8 @@ fuzzer=build-fuzz/tests/fuzz/scene_loader_fuzz
 
 if [ "$run_only" -eq 0 ]; then
   if ! command -v clang++ >/dev/null; then
-    echo "fuzz.sh: clang++ is needed (Debian: apt-get install clang libclang-rt-14-dev)" >&2
-    exit 1
+    echo "fuzz.sh: clang++ is needed (Debian: apt-get install clang libclang-rt-14-dev); skipped" >&2
+    exit 77
   fi
   launcher=()
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)

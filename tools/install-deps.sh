@@ -8,6 +8,7 @@ packages=(
   libgtest-dev libomp-dev
   libopenmpi-dev openmpi-bin
   povray
+  clang libclang-rt-14-dev
   python3-matplotlib
 )
 missing=()
