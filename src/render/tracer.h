@@ -25,7 +25,7 @@ class Tracer {
   struct KnownLight {
     Vec3 dir;
     double dist = 0;
-    bool lit = false;  // lightContribution goes on to the shadow test
+    bool lit = false;  // neither at the point nor behind the surface: lightContribution goes on
     uint8_t occlusion = kUnknown;
   };
 
@@ -59,12 +59,13 @@ class Tracer {
       points_[k] = prim.surfacePoint(rays[k], hits[k]->hit);
       normals_[k] = prim.normal(rays[k], hits[k]->hit);
       if (dot(normals_[k], rays[k].dir) > 0) normals_[k] = -normals_[k];
+      const double pointError = length(points_[k].error);
       for (size_t j = 0; j < lights; ++j) {
         KnownLight& kl = known_[size_t(k) * lights + j];
         const Vec3 toLight = scene_.lights[j].location - points_[k].p;
         kl.dist = length(toLight);
         kl.dir = toLight / kl.dist;
-        kl.lit = kl.dist > length(points_[k].error) && dot(normals_[k], kl.dir) >= kPovEpsilon;
+        kl.lit = kl.dist > pointError && dot(normals_[k], kl.dir) >= kPovEpsilon;
         kl.occlusion = kUnknown;
       }
     }
@@ -247,9 +248,10 @@ class Tracer {
     Vec3 l;
     double dist;
     if (known) {
+      // Not lit: the light is at the point or behind the surface; both give nothing below.
+      if (!known->lit) return {};
       l = known->dir;
       dist = known->dist;
-      if (!(dist > length(sp.error))) return {};
     } else {
       const Vec3 toLight = light.location - p;
       dist = length(toLight);
