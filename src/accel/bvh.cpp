@@ -295,8 +295,7 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
   for (;;) {
     const BvhNode& n = nodes_[node];
     const Bounds box = n.bounds();
-    double nearS;
-    if (cone.mayHit(box, sHi, nearS) && enters(box)) {
+    if (cone.mayHit(box, sHi) && enters(box)) {
       if (n.count == 0) {
         const uint32_t left = node + 1, right = n.rightOrFirst;
         const bool rightFirst = cone.sign(n.axis) < 0;
@@ -315,7 +314,6 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
                         uint64_t& tests) const {
   double best[kMaxPacket];
   ShapeHit hits[kMaxPacket];
-  bool changed[kMaxPacket];
   int which[kMaxPacket];
   uint32_t owner[kMaxPacket];
   Vec3 inv[kMaxPacket];
@@ -330,21 +328,14 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   // Tests the rays which[0..n) against primitive i.
   auto intersect = [&](uint32_t i, int n) {
     tests += uint64_t(n);
-    const LeafItem& it = items_[i];
-    if (it.isSphere) {
-      for (int j = 0; j < n; ++j) {
-        const int k = which[j];
-        if (const auto h = intersectWorldSphere(it.sphere, it.unit, rays[k], tMin, best[k])) {
-          best[k] = h->t;
-          hits[k] = *h;
-          owner[k] = i;
-        }
+    for (int j = 0; j < n; ++j) {
+      const int k = which[j];
+      if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
+        best[k] = h->t;
+        hits[k] = *h;
+        owner[k] = i;
       }
-      return;
     }
-    prims_[i].intersectEach(rays, which, n, tMin, best, hits, changed);
-    for (int j = 0; j < n; ++j)
-      if (changed[which[j]]) owner[which[j]] = i;
   };
   auto enters = [&](const Bounds& box) {
     for (int k = 0; k < count; ++k)
@@ -394,7 +385,6 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, c
 void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                           Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
   int live[kMaxPacket], inBox[kMaxPacket];
-  bool hit[kMaxPacket];
   Vec3 inv[kMaxPacket];
   int n = count;
   for (int k = 0; k < count; ++k) {
@@ -411,20 +401,14 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
     const LeafItem& p = items_[i];
     if (p.noShadow) return;
     tests += uint64_t(m);
-    if (p.isSphere) {
-      for (int j = 0; j < m; ++j)
-        hit[j] = out[rays[j]] != Occlusion::Blocked &&
-                 bool(intersectWorldSphere(p.sphere, p.unit, segments[rays[j]], tMin, tMax[rays[j]]));
-    } else {
-      prims_[i].hitsEach(segments, rays, m, tMin, tMax, hit);
-    }
     for (int j = 0; j < m; ++j) {
-      if (!hit[j] || out[rays[j]] == Occlusion::Blocked) continue;
+      const int k = rays[j];
+      if (out[k] == Occlusion::Blocked || !intersectItem(i, segments[k], tMin, tMax[k])) continue;
       if (p.opaque) {
-        out[rays[j]] = Occlusion::Blocked;
-        blocker[rays[j]] = i;
+        out[k] = Occlusion::Blocked;
+        blocker[k] = i;
       } else {
-        out[rays[j]] = Occlusion::Transparent;
+        out[k] = Occlusion::Transparent;
       }
     }
   };

@@ -33,8 +33,7 @@ class PacketCone {
   }
 
   // May some vector's segment [sLo, sHi] meet the box? False only when none can.
-  // `nearS` receives a lower bound of where the box is entered.
-  bool mayHit(const Bounds& b, double sHi, double& nearS) const;
+  bool mayHit(const Bounds& b, double sHi) const;
   // The sign of the vectors along `axis` when they share one (+1, -1), else 0.
   int sign(int axis) const { return sign_[axis]; }
 

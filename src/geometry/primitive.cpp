@@ -450,27 +450,4 @@ std::optional<ShapeHit> intersectWorldSphere(const SphereShape& s, float unit, c
   return hitSphere(s, ray, tMin, tMax, true, unit);
 }
 
-void Primitive::intersectEach(const Ray* rays, const int* which, int n, double tMin, double* best, ShapeHit* hits,
-                              bool* changed) const {
-  const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);
-  for (int i = 0; i < n; ++i) {
-    const int k = which[i];
-    const auto h = sphere ? hitSphere(*sphere, rays[k], tMin, best[k], true, unit) : intersect(rays[k], tMin, best[k]);
-    changed[k] = bool(h);
-    if (h) {
-      best[k] = h->t;
-      hits[k] = *h;
-    }
-  }
-}
-
-void Primitive::hitsEach(const Ray* rays, const int* which, int n, double tMin, const double* tMax,
-                         bool* blocked) const {
-  const SphereShape* sphere = transform ? nullptr : std::get_if<SphereShape>(&shape);
-  for (int i = 0; i < n; ++i) {
-    const int k = which[i];
-    blocked[i] = bool(sphere ? hitSphere(*sphere, rays[k], tMin, tMax[k], true, unit) : intersect(rays[k], tMin, tMax[k]));
-  }
-}
-
 }  // namespace pvrt

@@ -54,14 +54,6 @@ struct Primitive {
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
-  // The packet forms of intersect(), with the same answers ray by ray but one shape
-  // dispatch for many rays. For the rays rays[which[i]], i < n:
-  // closest: where one hits nearer than best[k], sets best[k] and hits[k] and returns true
-  //          in changed[k].
-  // any:     sets blocked[i] when the ray hits within (tMin, tMax[k]).
-  void intersectEach(const Ray* rays, const int* which, int n, double tMin, double* best, ShapeHit* hits,
-                     bool* changed) const;
-  void hitsEach(const Ray* rays, const int* which, int n, double tMin, const double* tMax, bool* blocked) const;
   // The hit point moved onto the exact surface (world space), with a bound on its error.
   SurfacePoint surfacePoint(const Ray& ray, const ShapeHit& hit) const;
   // Geometric normal at the hit (world space, unit, not yet flipped toward the ray).

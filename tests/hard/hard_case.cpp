@@ -22,12 +22,7 @@ int main(int argc, char** argv) {
   const std::string name = argv[1], sweep = argv[2], backend = argv[3];
   const std::string dump = argc >= 6 && std::string(argv[4]) == "--dump" ? argv[5] : "";
   auto renderWith = [&](const Scene& scene, int w, int h) {
-    RenderSettings rs;
-    rs.width = w;
-    rs.height = h;
-    rs.backend = backend == "serial" ? Backend::Serial : Backend::OpenMP;
-    rs.threads = backend == "serial" ? 1 : 2;
-    return render(scene, rs);
+    return hard::renderOn(scene, w, h, backend == "serial" ? "serial" : "openmp");
   };
   try {
     const hard::CaseResult r = hard::runCase(name, sweep, backend, renderWith, true, dump);

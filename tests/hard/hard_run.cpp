@@ -20,15 +20,6 @@ namespace {
 
 bool startsWith(const std::string& s, const std::string& p) { return s.rfind(p, 0) == 0; }
 
-// Serial, or OpenMP with two threads: the renders the checks compare against.
-RenderResult renderOn(const Scene& scene, int w, int h, const std::string& backend) {
-  RenderSettings rs;
-  rs.width = w;
-  rs.height = h;
-  rs.backend = backend == "openmp" ? Backend::OpenMP : Backend::Serial;
-  rs.threads = backend == "openmp" ? 2 : 1;
-  return render(scene, rs);
-}
 
 struct Outcome {
   bool pass = true;
@@ -172,6 +163,16 @@ CaseResult runCase(const std::string& name, const std::string& sweepArg, const s
   check(name, in, r, scene, backend == "mpi" ? "serial" : backend, sweep.offset, out);
   return {out.pass, fmt::format("HARD {} {} {}: {} offset={:g} scale={:g}{}", name, sweepArg, backend,
                                 out.pass ? "PASS" : "FAIL", sweep.offset, sweep.scale, out.figures)};
+}
+
+// Serial, or OpenMP with two threads: the renders the checks compare against.
+RenderResult renderOn(const Scene& scene, int w, int h, const std::string& backend) {
+  RenderSettings rs;
+  rs.width = w;
+  rs.height = h;
+  rs.backend = backend == "openmp" ? Backend::OpenMP : Backend::Serial;
+  rs.threads = backend == "openmp" ? 2 : 1;
+  return render(scene, rs);
 }
 
 }  // namespace pvrt::hard

@@ -14,6 +14,9 @@ namespace pvrt::hard {
 // Renders a built scene at w x h with the backend under test (collective under MPI).
 using RenderFn = std::function<RenderResult(const Scene&, int w, int h)>;
 
+// Serial, or OpenMP with two threads ("serial" / "openmp"): the renders the checks compare against.
+RenderResult renderOn(const Scene& scene, int w, int h, const std::string& backend);
+
 struct CaseResult {
   bool pass = true;
   std::string line;  // "HARD CASE SWEEP BACKEND: PASS|FAIL figures..."
