@@ -156,8 +156,13 @@ void checkOutputFormat(const std::string& path) {
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   if (ext != ".png" && ext != ".tga" && ext != ".exr")
     throw Error(ExitCode::Usage, "cannot write \"" + path + "\": unsupported image format (use .png, .tga or .exr)");
+  // Only a directory known to be missing is refused here; one that cannot even be looked
+  // at (no search permission) is left to the write, which reports why.
   const auto dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
+  std::error_code ec;
+  const auto type = std::filesystem::status(dir, ec).type();
+  if (!dir.empty() && (type == std::filesystem::file_type::not_found ||
+                       (!ec && type != std::filesystem::file_type::directory)))
     throw Error(ExitCode::OutputError, "cannot write \"" + path + "\": no such directory \"" + dir.string() + "\"");
 }
 

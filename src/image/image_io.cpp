@@ -75,8 +75,11 @@ void writeImage(const Image& image, const std::string& path) {
     throw Error(ExitCode::Usage, "cannot write \"" + path + "\": unsupported image format (use .png, .tga or .exr)");
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   std::error_code ec;
-  if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
-    throw outputError(path, "no such directory \"" + dir.string() + "\"");
+  const auto type = std::filesystem::status(dir, ec).type();
+  if (!dir.empty() && type != std::filesystem::file_type::directory)
+    throw outputError(path, type == std::filesystem::file_type::not_found || !ec
+                                ? "no such directory \"" + dir.string() + "\""
+                                : ec.message());
 
   // Write to a temporary sibling and rename it into place when complete.
   const std::string tmp = temporarySibling(path);
