@@ -1,11 +1,16 @@
-// Binned SAH build (centroids sorted into bins per axis, the cheapest split kept) and
-// an iterative, front-to-back closest-hit traversal over the flattened tree.
+// Binned SAH build (centroids sorted into bins per axis, the cheapest split kept) of a
+// binary tree, collapsed into a 4-wide one; iterative, front-to-back traversals of it.
 #include "accel/bvh.h"
 
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 namespace pvrt {
 
@@ -18,6 +23,13 @@ constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (s
 constexpr double kTraversalCost = 1.0;    // relative to one primitive test
 constexpr double kIntersectionCost = 1.0;
 
+// A node of the binary tree the build makes before it is collapsed.
+struct BuildNode {
+  Bounds bounds;
+  uint32_t rightOrFirst = 0;  // interior: right child (the left one is next); leaf: first primitive
+  uint32_t count = 0;         // 0 for interior nodes
+};
+
 struct BuildItem {
   Bounds bounds;
   Vec3 centroid;
@@ -26,11 +38,9 @@ struct BuildItem {
 
 class Builder {
  public:
-  Builder(std::vector<BuildItem>& items, std::vector<BvhNode>& nodes, BvhStats& stats)
-      : items_(items), nodes_(nodes), stats_(stats) {}
+  Builder(std::vector<BuildItem>& items, std::vector<BuildNode>& nodes) : items_(items), nodes_(nodes) {}
 
   void build(uint32_t begin, uint32_t end, int depth) {
-    stats_.maxDepth = std::max(stats_.maxDepth, depth);
     const uint32_t self = uint32_t(nodes_.size());
     nodes_.emplace_back();
     Bounds bounds, centroids;
@@ -38,18 +48,16 @@ class Builder {
       bounds.extend(items_[i].bounds);
       centroids.extend(items_[i].centroid);
     }
-    nodes_[self].setBounds(bounds);
+    nodes_[self].bounds = bounds;
     const uint32_t count = end - begin;
     uint32_t mid = count <= 1 ? end
                  : depth < kMaxSahDepth ? split(begin, end, bounds, centroids)
                                         : median(begin, end, centroids);
     if (mid == end) {  // a leaf
       nodes_[self].rightOrFirst = begin;
-      nodes_[self].count = uint16_t(count);
-      ++stats_.leaves;
+      nodes_[self].count = count;
       return;
     }
-    nodes_[self].axis = uint8_t(splitAxis_);
     build(begin, mid, depth + 1);
     nodes_[self].rightOrFirst = uint32_t(nodes_.size());
     build(mid, end, depth + 1);
@@ -131,9 +139,67 @@ class Builder {
   }
 
   std::vector<BuildItem>& items_;
-  std::vector<BvhNode>& nodes_;
-  BvhStats& stats_;
+  std::vector<BuildNode>& nodes_;
   int splitAxis_ = 0;
+};
+
+// Turns the binary tree into the 4-wide one: each wide node takes the children of a
+// binary node, then keeps opening its largest interior child until it has four.
+class Collapser {
+ public:
+  Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& wide, BvhStats& stats)
+      : binary_(binary), wide_(wide), stats_(stats) {}
+
+  void collapseRoot() {
+    if (binary_[0].count > 0) {  // the whole tree is one leaf
+      wide_.emplace_back();
+      wide_[0].setChild(0, binary_[0].bounds, binary_[0].rightOrFirst, uint8_t(binary_[0].count));
+      stats_.leaves = 1;
+      stats_.maxDepth = 1;
+      return;
+    }
+    collapse(0, 1);
+  }
+
+ private:
+  uint32_t collapse(uint32_t b, int depth) {
+    stats_.maxDepth = std::max(stats_.maxDepth, depth);
+    const uint32_t self = uint32_t(wide_.size());
+    wide_.emplace_back();
+    uint32_t kids[4] = {b + 1, binary_[b].rightOrFirst, 0, 0};
+    int n = 2;
+    while (n < 4) {
+      int open = -1;
+      double largest = -1;
+      for (int i = 0; i < n; ++i) {
+        const BuildNode& k = binary_[kids[i]];
+        if (k.count == 0 && k.bounds.surfaceArea() > largest) {
+          largest = k.bounds.surfaceArea();
+          open = i;
+        }
+      }
+      if (open < 0) break;
+      const uint32_t k = kids[open];
+      kids[open] = k + 1;
+      kids[n++] = binary_[k].rightOrFirst;
+    }
+    for (int i = 0; i < n; ++i) {
+      const BuildNode& k = binary_[kids[i]];
+      if (k.count > 0) {
+        ++stats_.leaves;
+        stats_.maxDepth = std::max(stats_.maxDepth, depth + 1);
+        wide_[self].setChild(i, k.bounds, k.rightOrFirst, uint8_t(k.count));
+      } else {
+        const uint32_t child = collapse(kids[i], depth + 1);
+        wide_[self].setChild(i, k.bounds, child, 0);
+      }
+    }
+    return self;
+  }
+
+  const std::vector<BuildNode>& binary_;
+  std::vector<BvhNode>& wide_;
+  BvhStats& stats_;
 };
 
 // Slab test: does the ray enter the box before `tMax` (and leave it after `tMin`)?
@@ -152,6 +218,82 @@ inline bool hitsBox(const Bounds& b, const Vec3& origin, const Vec3& inv, double
   return true;
 }
 
+
+// Deep enough for any tree the build makes: the binary tree is at most about 80 levels
+// deep (48 of SAH splits, then median halving), and a 4-wide level pushes at most 3.
+constexpr int kStackSize = 256;
+
+// One ray, ready for the four-box slab test: its origin and reciprocal direction, and
+// which side of each slab it meets first (by the sign bit of the direction, so that -0
+// counts as negative, as its reciprocal -inf does).
+struct RaySlabs {
+  double origin[3], inv[3];
+  bool nearIsHi[3];
+  explicit RaySlabs(const Ray& ray) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = ray.origin[a];
+      inv[a] = 1.0 / ray.dir[a];
+      nearIsHi[a] = std::signbit(ray.dir[a]);
+    }
+  }
+};
+
+// hitsBox() for the four children of `n` at once, with the same operations lane by lane
+// (x86's max and min return their second operand when the first is NaN, which is the
+// ternary's answer): bit c of the result is set when the ray enters child c's box, and
+// enter[c] is where.
+#if defined(__AVX__)
+inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
+  __m256d in = _mm256_set1_pd(tMin), out = _mm256_set1_pd(tMax);
+  const __m256d slack = _mm256_set1_pd(1 + 4e-16);
+  for (int a = 0; a < 3; ++a) {
+    const __m256d o = _mm256_set1_pd(r.origin[a]), inv = _mm256_set1_pd(r.inv[a]);
+    const __m256d nearPlane = _mm256_cvtps_pd(_mm_load_ps(r.nearIsHi[a] ? n.hi[a] : n.lo[a]));
+    const __m256d farPlane = _mm256_cvtps_pd(_mm_load_ps(r.nearIsHi[a] ? n.lo[a] : n.hi[a]));
+    in = _mm256_max_pd(_mm256_mul_pd(_mm256_sub_pd(nearPlane, o), inv), in);
+    out = _mm256_min_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(farPlane, o), inv), slack), out);
+  }
+  _mm256_storeu_pd(enter, in);
+  return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(in, out, _CMP_LE_OQ)));
+}
+#elif defined(__SSE2__)
+inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
+  unsigned mask = 0;
+  for (int half = 0; half < 4; half += 2) {
+    __m128d in = _mm_set1_pd(tMin), out = _mm_set1_pd(tMax);
+    const __m128d slack = _mm_set1_pd(1 + 4e-16);
+    for (int a = 0; a < 3; ++a) {
+      const __m128d o = _mm_set1_pd(r.origin[a]), inv = _mm_set1_pd(r.inv[a]);
+      const float* nearPlane = (r.nearIsHi[a] ? n.hi[a] : n.lo[a]) + half;
+      const float* farPlane = (r.nearIsHi[a] ? n.lo[a] : n.hi[a]) + half;
+      const __m128d nearD = _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(nearPlane))));
+      const __m128d farD = _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(farPlane))));
+      in = _mm_max_pd(_mm_mul_pd(_mm_sub_pd(nearD, o), inv), in);
+      out = _mm_min_pd(_mm_mul_pd(_mm_mul_pd(_mm_sub_pd(farD, o), inv), slack), out);
+    }
+    _mm_storeu_pd(enter + half, in);
+    mask |= unsigned(_mm_movemask_pd(_mm_cmple_pd(in, out))) << half;
+  }
+  return mask;
+}
+#else
+inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
+  unsigned mask = 0;
+  for (int c = 0; c < 4; ++c) {
+    double in = tMin, out = tMax;
+    for (int a = 0; a < 3; ++a) {
+      const double t0 = ((r.nearIsHi[a] ? n.hi[a][c] : n.lo[a][c]) - r.origin[a]) * r.inv[a];
+      const double t1 = ((r.nearIsHi[a] ? n.lo[a][c] : n.hi[a][c]) - r.origin[a]) * r.inv[a] * (1 + 4e-16);
+      in = t0 > in ? t0 : in;
+      out = t1 < out ? t1 : out;
+    }
+    enter[c] = in;
+    if (in <= out) mask |= 1u << c;
+  }
+  return mask;
+}
+#endif
+
 }  // namespace
 
 namespace {
@@ -169,17 +311,28 @@ float floatUp(double v) {
 }
 }  // namespace
 
-void BvhNode::setBounds(const Bounds& b) {
+BvhNode::BvhNode() {
   for (int a = 0; a < 3; ++a) {
-    lo[a] = floatDown(b.lo[a]);
-    hi[a] = floatUp(b.hi[a]);
+    for (int c = 0; c < 4; ++c) {
+      lo[a][c] = INFINITY;
+      hi[a][c] = -INFINITY;
+    }
   }
+}
+
+void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCount) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a][slot] = floatDown(b.lo[a]);
+    hi[a][slot] = floatUp(b.hi[a]);
+  }
+  child[slot] = index;
+  count[slot] = leafCount;
+  used = uint8_t(std::max(int(used), slot + 1));
 }
 
 Bvh::Bvh(std::vector<Primitive> primitives) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BuildItem> items;
-  std::vector<Primitive> unbounded;
   items.reserve(primitives.size());
   for (uint32_t i = 0; i < primitives.size(); ++i) {
     const Bounds b = primitives[i].bounds();
@@ -187,8 +340,11 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
     items.push_back({b, b.centroid(), i});
   }
   if (!items.empty()) {
-    nodes_.reserve(2 * items.size());
-    Builder(items, nodes_, stats_).build(0, uint32_t(items.size()), 1);
+    std::vector<BuildNode> binary;
+    binary.reserve(2 * items.size());
+    Builder(items, binary).build(0, uint32_t(items.size()), 1);
+    nodes_.reserve(binary.size() / 2 + 1);
+    Collapser(binary, nodes_, stats_).collapseRoot();
   }
   prims_.reserve(primitives.size());
   std::vector<bool> placed(primitives.size(), false);
@@ -221,26 +377,43 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
 template <class Visit>
 void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const {
   if (!nodes_.empty()) {
-    const Vec3 inv{1.0 / ray.dir.x, 1.0 / ray.dir.y, 1.0 / ray.dir.z};
-    const bool negative[3] = {ray.dir.x < 0, ray.dir.y < 0, ray.dir.z < 0};
-    uint32_t stack[64];
+    const RaySlabs slabs(ray);
+    struct Entry {
+      uint32_t index, count;  // a node, or (count > 0) a leaf's primitives
+      double enter;           // where the ray enters its box
+    };
+    Entry stack[kStackSize];
     int top = 0;
-    uint32_t node = 0;
+    Entry at{0, 0, tMin};
     for (;;) {
-      const BvhNode& n = nodes_[node];
-      if (hitsBox(n.bounds(), ray.origin, inv, tMin, tMax)) {
-        if (n.count == 0) {
-          // Visit the child on the ray's near side first so that far boxes are culled.
-          const uint32_t left = node + 1, right = n.rightOrFirst;
-          stack[top++] = negative[n.axis] ? left : right;
-          node = negative[n.axis] ? right : left;
+      if (at.count > 0) {
+        for (uint32_t i = at.index; i < at.index + at.count; ++i)
+          if (visit(i)) return;
+      } else {
+        const BvhNode& n = nodes_[at.index];
+        double enter[4];
+        unsigned mask = hitsChildren(n, slabs, tMin, tMax, enter);
+        if (mask != 0) {
+          // The children the ray enters, nearest last: it is visited now, the others
+          // stacked so that the nearer ones come off first.
+          Entry hit[4];
+          int m = 0;
+          for (; mask != 0; mask &= mask - 1) {
+            const int c = __builtin_ctz(mask);
+            hit[m++] = {n.child[c], n.count[c], enter[c]};
+          }
+          for (int i = 1; i < m; ++i)
+            for (int j = i; j > 0 && hit[j - 1].enter < hit[j].enter; --j) std::swap(hit[j - 1], hit[j]);
+          for (int i = 0; i + 1 < m; ++i) stack[top++] = hit[i];
+          at = hit[m - 1];
           continue;
         }
-        for (uint32_t i = n.rightOrFirst; i < n.rightOrFirst + n.count; ++i)
-          if (visit(i)) return;
       }
+      // The next stacked child that the ray still enters before tMax (which may have
+      // shrunk since it was stacked).
+      while (top > 0 && stack[top - 1].enter > tMax) --top;
       if (top == 0) break;
-      node = stack[--top];
+      at = stack[--top];
     }
   }
   for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
@@ -289,24 +462,36 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
 template <class Enters, class Leaf>
 void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const {
   if (nodes_.empty()) return;
-  uint32_t stack[64];
+  struct Entry {
+    uint32_t node, slot;  // child `slot` of node `node`
+    double enter;         // where the cone may first reach its box
+  };
+  Entry stack[kStackSize];
   int top = 0;
   uint32_t node = 0;
   for (;;) {
     const BvhNode& n = nodes_[node];
-    const Bounds box = n.bounds();
-    if (cone.mayHit(box, sHi) && enters(box)) {
-      if (n.count == 0) {
-        const uint32_t left = node + 1, right = n.rightOrFirst;
-        const bool rightFirst = cone.sign(n.axis) < 0;
-        stack[top++] = rightFirst ? left : right;
-        node = rightFirst ? right : left;
-        continue;
-      }
-      if (leaf(n.rightOrFirst, n.count, box)) return;
+    Entry hit[4];
+    int m = 0;
+    for (uint32_t c = 0; c < n.used; ++c) {
+      const Bounds box = n.childBounds(int(c));
+      const double enter = cone.entry(box, sHi);
+      if (enter < INFINITY && enters(box)) hit[m++] = {node, c, enter};
     }
-    if (top == 0) return;
-    node = stack[--top];
+    for (int i = 1; i < m; ++i)
+      for (int j = i; j > 0 && hit[j - 1].enter < hit[j].enter; --j) std::swap(hit[j - 1], hit[j]);
+    for (int i = 0; i < m; ++i) stack[top++] = hit[i];
+    // Leaves come off the stack to be visited; the first interior node is descended into.
+    for (;;) {
+      if (top == 0) return;
+      const Entry e = stack[--top];
+      const BvhNode& parent = nodes_[e.node];
+      if (parent.count[e.slot] == 0) {
+        node = parent.child[e.slot];
+        break;
+      }
+      if (leaf(parent.child[e.slot], parent.count[e.slot], parent.childBounds(int(e.slot)))) return;
+    }
   }
 }
 

@@ -16,7 +16,7 @@ void PacketCone::setRange(const Vec3& lo, const Vec3& hi) {
   }
 }
 
-bool PacketCone::mayHit(const Bounds& b, double sHi) const {
+double PacketCone::entry(const Bounds& b, double sHi) const {
   double enter = sLo_, leave = sHi;
   for (int a = 0; a < 3; ++a) {
     if (sign_[a] == 0) continue;
@@ -32,7 +32,7 @@ bool PacketCone::mayHit(const Bounds& b, double sHi) const {
   }
   // Slack far above rounding (a few ulps): culling must never be less generous than
   // testing each ray on its own.
-  return enter <= leave + 1e-9 * (std::fabs(enter) + std::fabs(leave));
+  return enter <= leave + 1e-9 * (std::fabs(enter) + std::fabs(leave)) ? enter : INFINITY;
 }
 
 }  // namespace pvrt

@@ -33,9 +33,10 @@ class PacketCone {
   }
 
   // May some vector's segment [sLo, sHi] meet the box? False only when none can.
-  bool mayHit(const Bounds& b, double sHi) const;
-  // The sign of the vectors along `axis` when they share one (+1, -1), else 0.
-  int sign(int axis) const { return sign_[axis]; }
+  bool mayHit(const Bounds& b, double sHi) const { return entry(b, sHi) < INFINITY; }
+  // The smallest s at which some vector may reach the box (a lower bound, for ordering
+  // boxes front to back), or infinity when none can.
+  double entry(const Bounds& b, double sHi) const;
 
  private:
   void setRange(const Vec3& lo, const Vec3& hi);
