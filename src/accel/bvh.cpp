@@ -6,11 +6,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
+#include "accel/lanes.h"
 
 namespace pvrt {
 
@@ -202,97 +199,43 @@ class Collapser {
   BvhStats& stats_;
 };
 
-// Slab test: does the ray enter the box before `tMax` (and leave it after `tMin`)?
-inline bool hitsBox(const Bounds& b, const Vec3& origin, const Vec3& inv, double tMin, double tMax) {
-  for (int a = 0; a < 3; ++a) {
-    double t0 = (b.lo[a] - origin[a]) * inv[a];
-    double t1 = (b.hi[a] - origin[a]) * inv[a];
-    if (t0 > t1) std::swap(t0, t1);
-    // NaN (0 * inf on a slab boundary) must not reject: a comparison with NaN is false,
-    // so the bound is kept. (Written out because std::fmin/fmax are library calls.)
-    tMin = t0 > tMin ? t0 : tMin;
-    t1 *= 1 + 4e-16;  // a few ulps of slack so boundary hits are kept
-    tMax = t1 < tMax ? t1 : tMax;
-    if (tMin > tMax) return false;
-  }
-  return true;
-}
-
-
 // Deep enough for any tree the build makes: the binary tree is at most about 80 levels
 // deep (48 of SAH splits, then median halving), and a 4-wide level pushes at most 3.
 constexpr int kStackSize = 256;
 
-// One ray, ready for the four-box slab test: its origin and reciprocal direction, and
-// which side of each slab it meets first (by the sign bit of the direction, so that -0
-// counts as negative, as its reciprocal -inf does).
+// One ray, ready for the four-box slab test: its origin and reciprocal direction in
+// every lane, and which side of each slab it meets first (by the sign bit of the
+// direction, so that -0 counts as negative, as its reciprocal -inf does).
 struct RaySlabs {
-  double origin[3], inv[3];
+  lanes::Double4 origin[3], inv[3];
   bool nearIsHi[3];
+  RaySlabs() = default;  // uninitialised, for arrays filled later
   explicit RaySlabs(const Ray& ray) {
     for (int a = 0; a < 3; ++a) {
-      origin[a] = ray.origin[a];
-      inv[a] = 1.0 / ray.dir[a];
+      origin[a] = lanes::splat(ray.origin[a]);
+      inv[a] = lanes::splat(1.0 / ray.dir[a]);
       nearIsHi[a] = std::signbit(ray.dir[a]);
     }
   }
 };
 
-// hitsBox() for the four children of `n` at once, with the same operations lane by lane
-// (x86's max and min return their second operand when the first is NaN, which is the
-// ternary's answer): bit c of the result is set when the ray enters child c's box, and
-// enter[c] is where.
-#if defined(__AVX__)
+// The slab test of the four children of `n` at once: bit c of the result is set when the
+// ray enters child c's box after tMin and before tMax, and enter[c] is where. The far
+// distances get a few ulps of slack so that boundary hits are kept.
 inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
-  __m256d in = _mm256_set1_pd(tMin), out = _mm256_set1_pd(tMax);
-  const __m256d slack = _mm256_set1_pd(1 + 4e-16);
+  using namespace lanes;
+  Double4 in = splat(tMin), out = splat(tMax);
+  const Double4 slack = splat(1 + 4e-16);
   for (int a = 0; a < 3; ++a) {
-    const __m256d o = _mm256_set1_pd(r.origin[a]), inv = _mm256_set1_pd(r.inv[a]);
-    const __m256d nearPlane = _mm256_cvtps_pd(_mm_load_ps(r.nearIsHi[a] ? n.hi[a] : n.lo[a]));
-    const __m256d farPlane = _mm256_cvtps_pd(_mm_load_ps(r.nearIsHi[a] ? n.lo[a] : n.hi[a]));
-    in = _mm256_max_pd(_mm256_mul_pd(_mm256_sub_pd(nearPlane, o), inv), in);
-    out = _mm256_min_pd(_mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(farPlane, o), inv), slack), out);
+    const Double4 t0 = (widen(r.nearIsHi[a] ? n.hi[a] : n.lo[a]) - r.origin[a]) * r.inv[a];
+    const Double4 t1 = (widen(r.nearIsHi[a] ? n.lo[a] : n.hi[a]) - r.origin[a]) * r.inv[a] * slack;
+    // A NaN (0 * inf on a slab boundary) must not reject: it leaves the bound as it was.
+    in = maxOr(t0, in);
+    out = minOr(t1, out);
   }
-  _mm256_storeu_pd(enter, in);
-  return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(in, out, _CMP_LE_OQ)));
+  store(enter, in);
+  return lessEqual(in, out);
 }
-#elif defined(__SSE2__)
-inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
-  unsigned mask = 0;
-  for (int half = 0; half < 4; half += 2) {
-    __m128d in = _mm_set1_pd(tMin), out = _mm_set1_pd(tMax);
-    const __m128d slack = _mm_set1_pd(1 + 4e-16);
-    for (int a = 0; a < 3; ++a) {
-      const __m128d o = _mm_set1_pd(r.origin[a]), inv = _mm_set1_pd(r.inv[a]);
-      const float* nearPlane = (r.nearIsHi[a] ? n.hi[a] : n.lo[a]) + half;
-      const float* farPlane = (r.nearIsHi[a] ? n.lo[a] : n.hi[a]) + half;
-      const __m128d nearD = _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(nearPlane))));
-      const __m128d farD = _mm_cvtps_pd(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(farPlane))));
-      in = _mm_max_pd(_mm_mul_pd(_mm_sub_pd(nearD, o), inv), in);
-      out = _mm_min_pd(_mm_mul_pd(_mm_mul_pd(_mm_sub_pd(farD, o), inv), slack), out);
-    }
-    _mm_storeu_pd(enter + half, in);
-    mask |= unsigned(_mm_movemask_pd(_mm_cmple_pd(in, out))) << half;
-  }
-  return mask;
-}
-#else
-inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
-  unsigned mask = 0;
-  for (int c = 0; c < 4; ++c) {
-    double in = tMin, out = tMax;
-    for (int a = 0; a < 3; ++a) {
-      const double t0 = ((r.nearIsHi[a] ? n.hi[a][c] : n.lo[a][c]) - r.origin[a]) * r.inv[a];
-      const double t1 = ((r.nearIsHi[a] ? n.lo[a][c] : n.hi[a][c]) - r.origin[a]) * r.inv[a] * (1 + 4e-16);
-      in = t0 > in ? t0 : in;
-      out = t1 < out ? t1 : out;
-    }
-    enter[c] = in;
-    if (in <= out) mask |= 1u << c;
-  }
-  return mask;
-}
-#endif
 
 }  // namespace
 
@@ -454,11 +397,12 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
 }
 
 // The packet version of traverse(): visits the leaves that at least one ray of the packet
-// enters, nearer child first along the split axis when the packet's directions agree on
-// it. A box is first tested against the whole cone (cheap, and enough for a coherent
-// packet); one the cone may reach is then kept only if `enters(box)` finds a ray that
-// really enters it, so an incoherent packet never walks more of the tree than its rays
-// would one by one. `leaf(first, count, box)` returning true ends the walk.
+// enters, nearer child first as far as the packet's cone can tell. A node's four child
+// boxes are first tested against the whole cone (cheap, and enough for a coherent
+// packet); those the cone may reach are then kept only if `enters(node, candidates)`
+// finds a ray that really enters them, so an incoherent packet never walks more of the
+// tree than its rays would one by one. `leaf(first, count, parent, slot)` returning true
+// ends the walk.
 template <class Enters, class Leaf>
 void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const {
   if (nodes_.empty()) return;
@@ -471,12 +415,14 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
   uint32_t node = 0;
   for (;;) {
     const BvhNode& n = nodes_[node];
+    double enter[4];
+    unsigned mask = cone.entries(n.lo, n.hi, sHi, enter) & ((1u << n.used) - 1);
+    if (mask != 0) mask = enters(n, mask);
     Entry hit[4];
     int m = 0;
-    for (uint32_t c = 0; c < n.used; ++c) {
-      const Bounds box = n.childBounds(int(c));
-      const double enter = cone.entry(box, sHi);
-      if (enter < INFINITY && enters(box)) hit[m++] = {node, c, enter};
+    for (; mask != 0; mask &= mask - 1) {
+      const uint32_t c = uint32_t(__builtin_ctz(mask));
+      hit[m++] = {node, c, enter[c]};
     }
     for (int i = 1; i < m; ++i)
       for (int j = i; j > 0 && hit[j - 1].enter < hit[j].enter; --j) std::swap(hit[j - 1], hit[j]);
@@ -490,22 +436,23 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
         node = parent.child[e.slot];
         break;
       }
-      if (leaf(parent.child[e.slot], parent.count[e.slot], parent.childBounds(int(e.slot)))) return;
+      if (leaf(parent.child[e.slot], parent.count[e.slot], parent, int(e.slot))) return;
     }
   }
 }
 
 void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
                         uint64_t& tests) const {
+  // Plain arrays, not value-initialised: a packet sets what it reads.
   double best[kMaxPacket];
   ShapeHit hits[kMaxPacket];
   int which[kMaxPacket];
   uint32_t owner[kMaxPacket];
-  Vec3 inv[kMaxPacket];
+  RaySlabs slabs[kMaxPacket];
   for (int k = 0; k < count; ++k) {
     best[k] = tMax;
     owner[k] = kNone;
-    inv[k] = {1.0 / rays[k].dir.x, 1.0 / rays[k].dir.y, 1.0 / rays[k].dir.z};
+    slabs[k] = RaySlabs(rays[k]);
   }
   // Unit directions from a common origin: the ray parameter t is the cone's s.
   const PacketCone cone(rays[0].origin, [&](int k) { return rays[k].dir; }, count, tMin);
@@ -522,17 +469,19 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       }
     }
   };
-  auto enters = [&](const Bounds& box) {
-    for (int k = 0; k < count; ++k)
-      if (hitsBox(box, rays[k].origin, inv[k], tMin, best[k])) return true;
-    return false;
+  double unused[4];
+  auto enters = [&](const BvhNode& n, unsigned candidates) {
+    unsigned found = 0;
+    for (int k = 0; k < count && found != candidates; ++k)
+      found |= hitsChildren(n, slabs[k], tMin, best[k], unused) & candidates;
+    return found;
   };
-  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const Bounds& box) {
+  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const BvhNode& parent, int slot) {
     // Only the rays that enter the leaf's box (for a leaf of one primitive the box test
     // would cost about what the primitive's own test does: all of them).
     int m = 0;
     for (int k = 0; k < count; ++k)
-      if (n == 1 || hitsBox(box, rays[k].origin, inv[k], tMin, best[k])) which[m++] = k;
+      if (n == 1 || (hitsChildren(parent, slabs[k], tMin, best[k], unused) >> slot & 1u)) which[m++] = k;
     for (uint32_t i = first; i < first + n; ++i) intersect(i, m);
     farthest = *std::max_element(best, best + count);
     return false;
@@ -570,12 +519,12 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, c
 void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                           Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
   int live[kMaxPacket], inBox[kMaxPacket];
-  Vec3 inv[kMaxPacket];
+  RaySlabs slabs[kMaxPacket];
   int n = count;
   for (int k = 0; k < count; ++k) {
     out[k] = Occlusion::Clear;
     live[k] = k;
-    inv[k] = {1.0 / segments[k].dir.x, 1.0 / segments[k].dir.y, 1.0 / segments[k].dir.z};
+    slabs[k] = RaySlabs(segments[k]);
   }
   // The cone runs from the light back to each segment's start: s in [0, 1].
   const PacketCone cone(apex, [&](int k) { return segments[k].origin - apex; }, count, 0.0);
@@ -603,15 +552,17 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
       if (out[live[j]] != Occlusion::Blocked) live[kept++] = live[j];
     n = kept;
   };
-  auto enters = [&](const Bounds& box) {
-    for (int j = 0; j < n; ++j)
-      if (hitsBox(box, segments[live[j]].origin, inv[live[j]], tMin, tMax[live[j]])) return true;
-    return false;
+  double unused[4];
+  auto enters = [&](const BvhNode& node, unsigned candidates) {
+    unsigned found = 0;
+    for (int j = 0; j < n && found != candidates; ++j)
+      found |= hitsChildren(node, slabs[live[j]], tMin, tMax[live[j]], unused) & candidates;
+    return found;
   };
-  traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t count, const Bounds& box) {
+  traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t count, const BvhNode& parent, int slot) {
     int m = 0;
     for (int j = 0; j < n; ++j)
-      if (count == 1 || hitsBox(box, segments[live[j]].origin, inv[live[j]], tMin, tMax[live[j]]))
+      if (count == 1 || (hitsChildren(parent, slabs[live[j]], tMin, tMax[live[j]], unused) >> slot & 1u))
         inBox[m++] = live[j];
     for (uint32_t i = first; i < first + count; ++i) test(i, inBox, m);
     compact();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "accel/lanes.h"
+
 namespace pvrt {
 
 void PacketCone::setRange(const Vec3& lo, const Vec3& hi) {
@@ -33,6 +35,22 @@ double PacketCone::entry(const Bounds& b, double sHi) const {
   // Slack far above rounding (a few ulps): culling must never be less generous than
   // testing each ray on its own.
   return enter <= leave + 1e-9 * (std::fabs(enter) + std::fabs(leave)) ? enter : INFINITY;
+}
+
+unsigned PacketCone::entries(const float (&lo)[3][4], const float (&hi)[3][4], double sHi, double* enter) const {
+  using namespace lanes;
+  Double4 in = splat(sLo_), out = splat(sHi);
+  for (int a = 0; a < 3; ++a) {
+    if (sign_[a] == 0) continue;
+    const Double4 apex = splat(apex_[a]), invA = splat(invA_[a]), invB = splat(invB_[a]);
+    const Double4 nearD = widen(sign_[a] > 0 ? lo[a] : hi[a]) - apex;
+    const Double4 farD = widen(sign_[a] > 0 ? hi[a] : lo[a]) - apex;
+    // As in entry(); a NaN bound (from a NaN box) leaves the interval as it was.
+    in = maxOr(minOr(nearD * invA, nearD * invB), in);
+    out = minOr(maxOr(farD * invA, farD * invB), out);
+  }
+  store(enter, in);
+  return lessEqual(in, out + splat(1e-9) * (abs(in) + abs(out)));
 }
 
 }  // namespace pvrt

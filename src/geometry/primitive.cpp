@@ -12,36 +12,10 @@ namespace pvrt {
 
 namespace {
 
-// The nearest of two candidate roots that lies inside (lo, hi).
-std::optional<double> nearestRoot(double t1, double t2, double lo, double hi) {
-  if (t1 > t2) std::swap(t1, t2);
-  if (t1 > lo && t1 < hi) return t1;
-  if (t2 > lo && t2 < hi) return t2;
-  return std::nullopt;
-}
+using detail::hitUnitSphere;
+using detail::nearestRoot;
 
 // ---------------------------------------------------------------- sphere
-
-// The sphere test on a direction taken as unit length (world rays are; local rays of
-// transformed spheres are normalised by the caller, as POV-Ray does). POV-Ray's miss
-// tests, with Haines et al.'s careful arithmetic (Ray Tracing Gems, chapter 7): the
-// squared half chord r^2 - |f - (f.d)d|^2 from the perpendicular distance (no cancellation
-// when the sphere is small or far away), and the stable pair of roots q and c / q.
-std::optional<ShapeHit> hitUnitSphere(const Vec3& center, double r2, const Vec3& origin, const Vec3& dir,
-                                      double lo, double hi, double unit) {
-  const Vec3 oc = center - origin;
-  const double ocSquared = dot(oc, oc);
-  const double closest = dot(oc, dir);  // distance to the point of closest approach
-  if (ocSquared >= r2 && closest < kPovEpsilon * unit) return std::nullopt;
-  const Vec3 perp = oc - dir * closest;
-  const double halfChord2 = r2 - dot(perp, perp);
-  if (halfChord2 <= kPovEpsilon * unit * unit) return std::nullopt;
-  const double q = closest + std::copysign(std::sqrt(halfChord2), closest);  // the root farther from 0
-  const double c = ocSquared - r2;                                           // the product of the roots
-  const auto t = nearestRoot(c / q, q, std::max(lo, kDepthTolerance * unit), hi);
-  if (!t) return std::nullopt;
-  return ShapeHit{*t};
-}
 
 std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double lo, double hi, bool unitDir,
                                   double unit) {
@@ -445,9 +419,5 @@ SmoothTriangleShape makeSmoothTriangle(const Vec3& p1, const Vec3& n1, const Vec
   return {p1, p2, p3, normalize(n1), normalize(n2), normalize(n3), flat.normal};
 }
 
-std::optional<ShapeHit> intersectWorldSphere(const SphereShape& s, float unit, const Ray& ray, double tMin,
-                                             double tMax) {
-  return hitSphere(s, ray, tMin, tMax, true, unit);
-}
 
 }  // namespace pvrt

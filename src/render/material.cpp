@@ -13,7 +13,10 @@ FilterColor Pigment::at(const Vec3& worldPoint) const {
   // integer plane still fall in the upper cell.
   const double k = std::floor(p.x + kPovEpsilon) + std::floor(p.y + kPovEpsilon) +
                    std::floor(p.z + kPovEpsilon);
-  return std::fmod(std::fabs(k), 2.0) == 0.0 ? color : color2;
+  // k is a whole number: even when half of it is whole too (fmod(|k|, 2) == 0, without
+  // the library call; an infinite or NaN k gives color2, as fmod's NaN does).
+  const double half = std::fabs(k) * 0.5;
+  return std::isfinite(half) && half == std::floor(half) ? color : color2;
 }
 
 Material buildMaterial(const MaterialDesc& desc, const Affine& objectToWorld) {
