@@ -212,13 +212,14 @@ double Attributes::parseNumber(const char* name, const std::string& w) const {
   // tiny for a double: zero) from overflow (an error) by its decimal exponent.
   if (ec == std::errc::result_out_of_range && p == end && !overflows(std::string_view(begin, end)))
     ec = std::errc();
+  if (ec == std::errc() && p == end && std::isfinite(v) && std::fabs(v) <= kMaxSceneNumber) return v;
+  // The messages are only built for a bad number (a big scene has millions of good ones).
   const std::string shown = printable(w);
   const std::string range = " is out of range (at most 1e15 in magnitude)";
   if (ec == std::errc::result_out_of_range) throw error(attr(name) + ": " + shown + range);
   if (ec != std::errc() || p != end) throw error(attr(name) + ": \"" + shown + "\" is not a number");
   if (!std::isfinite(v)) throw error(attr(name) + ": " + shown + " is not a finite number");
-  if (std::fabs(v) > kMaxSceneNumber) throw error(attr(name) + ": " + shown + range);
-  return v;
+  throw error(attr(name) + ": " + shown + range);
 }
 
 }  // namespace pvrt

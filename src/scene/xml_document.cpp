@@ -96,13 +96,17 @@ size_t firstNonTextByte(std::string_view s) {
 }
 
 size_t firstBadCharacterReference(std::string_view s) {
-  for (size_t i = 0; i < s.size(); ++i) {
+  // Only '<' (which may open a comment or CDATA section) and '&' matter: jump between them.
+  for (size_t i = s.find_first_of("<&"); i < s.size(); i = s.find_first_of("<&", i + 1)) {
     // References are not decoded inside comments and CDATA sections.
-    for (const auto& [open, close] : {std::pair{"<!--", "-->"}, std::pair{"<![CDATA[", "]]>"}})
-      if (s.compare(i, std::strlen(open), open) == 0) {
-        i = std::min(s.find(close, i), s.size());
-        break;
-      }
+    if (s[i] == '<') {
+      for (const auto& [open, close] : {std::pair{"<!--", "-->"}, std::pair{"<![CDATA[", "]]>"}})
+        if (s.compare(i, std::strlen(open), open) == 0) {
+          i = std::min(s.find(close, i), s.size());
+          break;
+        }
+      continue;
+    }
     if (s.compare(i, 2, "&#") != 0) continue;
     const bool hex = i + 2 < s.size() && s[i + 2] == 'x';
     size_t j = i + (hex ? 3 : 2);
