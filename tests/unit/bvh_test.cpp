@@ -440,6 +440,27 @@ TEST(BvhPacket, ConeNeverMissesABoxARayHits) {
       ++hits;
       ASSERT_TRUE(cone.mayHit(box, 30)) << "trial " << trial;
     }
+    // The four-box form the traversal uses answers as entry() does, box by box: the box
+    // sits in slot trial % 4 of a node whose other slots hold unrelated boxes.
+    BvhNode node;
+    for (int c = 0; c < 4; ++c) {
+      Bounds other;
+      other.extend(gen.point(6));
+      other.extend(gen.point(6));
+      node.setChild(c, c == trial % 4 ? box : other, 0, 1);
+    }
+    double enter[4];
+    const unsigned mask = cone.entries(node.lo, node.hi, 30, enter);
+    for (int c = 0; c < 4; ++c) {
+      const double one = cone.entry(node.childBounds(c), 30);
+      ASSERT_EQ((mask >> c & 1u) != 0, one < INFINITY) << "trial " << trial << " slot " << c;
+      if (one < INFINITY) {
+        ASSERT_EQ(enter[c], one) << "trial " << trial << " slot " << c;
+      }
+    }
+    if (any) {
+      ASSERT_TRUE(mask >> (trial % 4) & 1u) << "trial " << trial;
+    }
   }
   EXPECT_GT(hits, 1000);
 }
