@@ -32,10 +32,8 @@ class PacketCone {
     setRange(lo, hi);
   }
 
-  // May some vector's segment [sLo, sHi] meet the box? False only when none can.
-  bool mayHit(const Bounds& b, double sHi) const { return entry(b, sHi) < INFINITY; }
-  // The smallest s at which some vector may reach the box (a lower bound, for ordering
-  // boxes front to back), or infinity when none can.
+  // The smallest s in [sLo, sHi] at which some vector's segment may reach the box (a
+  // lower bound, for ordering boxes front to back), or infinity only when none can.
   double entry(const Bounds& b, double sHi) const;
   // entry() for four boxes at once, given as float bounds [axis][box] (a 4-wide BVH
   // node's): bit c of the result is set when box c may be reached, and enter[c] is the
