@@ -219,6 +219,27 @@ struct RaySlabs {
   }
 };
 
+// The RaySlabs of a packet's rays, each made the first time it is asked for: many rays
+// of a coherent packet are never tested against a box on their own (the cone answers
+// for them), and making one costs three divisions.
+class LazySlabs {
+ public:
+  explicit LazySlabs(const Ray* rays) : rays_(rays) {}
+  const RaySlabs& operator[](int k) {
+    if (!(made_ >> k & 1u)) {
+      slabs_[k] = RaySlabs(rays_[k]);
+      made_ |= uint64_t(1) << k;
+    }
+    return slabs_[k];
+  }
+
+ private:
+  static_assert(kMaxPacket <= 64, "one bit per ray in made_");
+  const Ray* rays_;
+  uint64_t made_ = 0;
+  RaySlabs slabs_[kMaxPacket];
+};
+
 // The slab test of the four children of `n` at once: bit c of the result is set when the
 // ray enters child c's box after tMin and before tMax, and enter[c] is where. The far
 // distances get a few ulps of slack so that boundary hits are kept.
@@ -445,15 +466,12 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
                         uint64_t& tests) const {
   // Plain arrays, not value-initialised: a packet sets what it reads.
   double best[kMaxPacket];
-  ShapeHit hits[kMaxPacket];
   int which[kMaxPacket];
-  uint32_t owner[kMaxPacket];
-  RaySlabs slabs[kMaxPacket];
   for (int k = 0; k < count; ++k) {
     best[k] = tMax;
-    owner[k] = kNone;
-    slabs[k] = RaySlabs(rays[k]);
+    out[k].reset();
   }
+  LazySlabs slabs(rays);
   // Unit directions from a common origin: the ray parameter t is the cone's s.
   const PacketCone cone(rays[0].origin, [&](int k) { return rays[k].dir; }, count, tMin);
   double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
@@ -464,8 +482,7 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       const int k = which[j];
       if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
         best[k] = h->t;
-        hits[k] = *h;
-        owner[k] = i;
+        out[k] = ClosestHit{*h, i};
       }
     }
   };
@@ -488,10 +505,6 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   });
   for (int k = 0; k < count; ++k) which[k] = k;
   for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i, count);
-  for (int k = 0; k < count; ++k) {
-    if (owner[k] == kNone) out[k].reset();
-    else out[k] = ClosestHit{hits[k], owner[k]};
-  }
 }
 
 namespace {
@@ -519,13 +532,13 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, c
 void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                           Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
   int live[kMaxPacket], inBox[kMaxPacket];
-  RaySlabs slabs[kMaxPacket];
   int n = count;
   for (int k = 0; k < count; ++k) {
     out[k] = Occlusion::Clear;
     live[k] = k;
-    slabs[k] = RaySlabs(segments[k]);
   }
+  LazySlabs slabs(segments);
+  bool retired = false;  // some segment became Blocked since `live` was last compacted
   // The cone runs from the light back to each segment's start: s in [0, 1].
   const PacketCone cone(apex, [&](int k) { return segments[k].origin - apex; }, count, 0.0);
   const double sHi = 1.0;
@@ -541,12 +554,15 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
       if (p.opaque) {
         out[k] = Occlusion::Blocked;
         blocker[k] = i;
+        retired = true;
       } else {
         out[k] = Occlusion::Transparent;
       }
     }
   };
   auto compact = [&] {
+    if (!retired) return;
+    retired = false;
     int kept = 0;
     for (int j = 0; j < n; ++j)
       if (out[live[j]] != Occlusion::Blocked) live[kept++] = live[j];

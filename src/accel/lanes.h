@@ -1,4 +1,5 @@
-// Four doubles side by side, one lane per child of a 4-wide BVH node: an AVX register
+// Four doubles side by side, one lane per child of a 4-wide BVH node (or per ray of a
+// packet): an AVX register
 // when the compiler targets AVX, two SSE2 registers on any other x86-64, plain doubles
 // elsewhere. Every operation is the IEEE one lane by lane, so a lane gives exactly the
 // bits the scalar code would.
@@ -22,6 +23,9 @@ inline Double4 widen(const float* p) { return {_mm256_cvtps_pd(_mm_load_ps(p))};
 inline Double4 operator+(Double4 a, Double4 b) { return {_mm256_add_pd(a.v, b.v)}; }
 inline Double4 operator-(Double4 a, Double4 b) { return {_mm256_sub_pd(a.v, b.v)}; }
 inline Double4 operator*(Double4 a, Double4 b) { return {_mm256_mul_pd(a.v, b.v)}; }
+inline Double4 operator/(Double4 a, Double4 b) { return {_mm256_div_pd(a.v, b.v)}; }
+inline Double4 sqrt(Double4 a) { return {_mm256_sqrt_pd(a.v)}; }
+inline Double4 load(const double* p) { return {_mm256_loadu_pd(p)}; }
 // x > keep ? x : keep, and x < keep ? x : keep: x86's max and min return their second
 // operand when the first is NaN, which is what the ternaries do.
 inline Double4 maxOr(Double4 x, Double4 keep) { return {_mm256_max_pd(x.v, keep.v)}; }
@@ -29,6 +33,7 @@ inline Double4 minOr(Double4 x, Double4 keep) { return {_mm256_min_pd(x.v, keep.
 inline Double4 abs(Double4 a) { return {_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)}; }
 // Bit i set when a[i] <= b[i] (false for NaN).
 inline unsigned lessEqual(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ))); }
+inline unsigned less(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ))); }
 inline void store(double* out, Double4 a) { _mm256_storeu_pd(out, a.v); }
 
 #elif defined(__SSE2__)
@@ -42,6 +47,9 @@ inline Double4 widen(const float* p) {
 inline Double4 operator+(Double4 a, Double4 b) { return {_mm_add_pd(a.lo, b.lo), _mm_add_pd(a.hi, b.hi)}; }
 inline Double4 operator-(Double4 a, Double4 b) { return {_mm_sub_pd(a.lo, b.lo), _mm_sub_pd(a.hi, b.hi)}; }
 inline Double4 operator*(Double4 a, Double4 b) { return {_mm_mul_pd(a.lo, b.lo), _mm_mul_pd(a.hi, b.hi)}; }
+inline Double4 operator/(Double4 a, Double4 b) { return {_mm_div_pd(a.lo, b.lo), _mm_div_pd(a.hi, b.hi)}; }
+inline Double4 sqrt(Double4 a) { return {_mm_sqrt_pd(a.lo), _mm_sqrt_pd(a.hi)}; }
+inline Double4 load(const double* p) { return {_mm_loadu_pd(p), _mm_loadu_pd(p + 2)}; }
 inline Double4 maxOr(Double4 x, Double4 keep) { return {_mm_max_pd(x.lo, keep.lo), _mm_max_pd(x.hi, keep.hi)}; }
 inline Double4 minOr(Double4 x, Double4 keep) { return {_mm_min_pd(x.lo, keep.lo), _mm_min_pd(x.hi, keep.hi)}; }
 inline Double4 abs(Double4 a) {
@@ -50,6 +58,9 @@ inline Double4 abs(Double4 a) {
 }
 inline unsigned lessEqual(Double4 a, Double4 b) {
   return unsigned(_mm_movemask_pd(_mm_cmple_pd(a.lo, b.lo))) | unsigned(_mm_movemask_pd(_mm_cmple_pd(a.hi, b.hi))) << 2;
+}
+inline unsigned less(Double4 a, Double4 b) {
+  return unsigned(_mm_movemask_pd(_mm_cmplt_pd(a.lo, b.lo))) | unsigned(_mm_movemask_pd(_mm_cmplt_pd(a.hi, b.hi))) << 2;
 }
 inline void store(double* out, Double4 a) {
   _mm_storeu_pd(out, a.lo);
@@ -70,6 +81,9 @@ inline Double4 widen(const float* p) { return each([&](int i) { return double(p[
 inline Double4 operator+(Double4 a, Double4 b) { return each([&](int i) { return a.v[i] + b.v[i]; }); }
 inline Double4 operator-(Double4 a, Double4 b) { return each([&](int i) { return a.v[i] - b.v[i]; }); }
 inline Double4 operator*(Double4 a, Double4 b) { return each([&](int i) { return a.v[i] * b.v[i]; }); }
+inline Double4 operator/(Double4 a, Double4 b) { return each([&](int i) { return a.v[i] / b.v[i]; }); }
+inline Double4 sqrt(Double4 a) { return each([&](int i) { return std::sqrt(a.v[i]); }); }
+inline Double4 load(const double* p) { return each([&](int i) { return p[i]; }); }
 inline Double4 maxOr(Double4 x, Double4 keep) {
   return each([&](int i) { return x.v[i] > keep.v[i] ? x.v[i] : keep.v[i]; });
 }
@@ -80,6 +94,11 @@ inline Double4 abs(Double4 a) { return each([&](int i) { return std::fabs(a.v[i]
 inline unsigned lessEqual(Double4 a, Double4 b) {
   unsigned m = 0;
   for (int i = 0; i < 4; ++i) m |= (a.v[i] <= b.v[i] ? 1u : 0u) << i;
+  return m;
+}
+inline unsigned less(Double4 a, Double4 b) {
+  unsigned m = 0;
+  for (int i = 0; i < 4; ++i) m |= (a.v[i] < b.v[i] ? 1u : 0u) << i;
   return m;
 }
 inline void store(double* out, Double4 a) { std::memcpy(out, a.v, sizeof a.v); }

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "accel/lanes.h"
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/shading.h"
@@ -27,6 +28,14 @@ class Tracer {
     double dist = 0;
     bool lit = false;  // neither at the point nor behind the surface: lightContribution goes on
     uint8_t occlusion = kUnknown;
+  };
+  // The same for every ray of a packet and one light, a component per array, so that
+  // four rays are done at once (the divisions and square roots are most of the cost).
+  struct PacketLight {
+    double dirX[kMaxPacket], dirY[kMaxPacket], dirZ[kMaxPacket], dist[kMaxPacket];
+    bool lit[kMaxPacket];
+    uint8_t occlusion[kMaxPacket];
+    KnownLight at(int k) const { return {{dirX[k], dirY[k], dirZ[k]}, dist[k], lit[k], occlusion[k]}; }
   };
 
  public:
@@ -51,22 +60,45 @@ class Tracer {
     scene_.bvh.closestPacket(rays, count, scene_.tol.primaryMinDepth, scene_.tol.maxDistance, hits,
                              stats_.intersectionTests);
     const size_t lights = scene_.lights.size();
-    known_.resize(size_t(count) * lights);
-    for (int k = 0; k < count; ++k) {
-      if (!hits[k]) continue;
+    known_.resize(lights);
+    // The hit points and normals a component per array (zeros for misses and for the
+    // lanes past `count`, whose answers are never read).
+    const int padded = (count + 3) & ~3;
+    for (int k = 0; k < padded; ++k) {
+      if (k >= count || !hits[k]) {
+        px_[k] = py_[k] = pz_[k] = nx_[k] = ny_[k] = nz_[k] = pointError_[k] = 0;
+        continue;
+      }
       // Exactly what shade() and lightContribution() compute for this hit, done once.
       const Primitive& prim = scene_.bvh.primitives()[hits[k]->primitive];
       points_[k] = prim.surfacePoint(rays[k], hits[k]->hit);
       normals_[k] = prim.normal(rays[k], hits[k]->hit);
       if (dot(normals_[k], rays[k].dir) > 0) normals_[k] = -normals_[k];
-      const double pointError = length(points_[k].error);
-      for (size_t j = 0; j < lights; ++j) {
-        KnownLight& kl = known_[size_t(k) * lights + j];
-        const Vec3 toLight = scene_.lights[j].location - points_[k].p;
-        kl.dist = length(toLight);
-        kl.dir = toLight / kl.dist;
-        kl.lit = kl.dist > pointError && dot(normals_[k], kl.dir) >= kPovEpsilon;
-        kl.occlusion = kUnknown;
+      // Every segment toward a light that lightContribution traces leaves on the side the
+      // normal points to (it asks dot(n, l) >= kPovEpsilon first), so all of this hit's
+      // segments start here.
+      shadowOrigin_[k] = offsetRayOrigin(points_[k], normals_[k], normals_[k]);
+      px_[k] = points_[k].p.x, py_[k] = points_[k].p.y, pz_[k] = points_[k].p.z;
+      nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
+      pointError_[k] = length(points_[k].error);
+    }
+    for (size_t j = 0; j < lights; ++j) {
+      using namespace lanes;
+      PacketLight& pl = known_[j];
+      const Vec3& at = scene_.lights[j].location;
+      const Double4 lx = splat(at.x), ly = splat(at.y), lz = splat(at.z), eps = splat(kPovEpsilon);
+      for (int k = 0; k < padded; k += 4) {
+        // Lane by lane the operations of length(), operator/ and dot(), in their order.
+        const Double4 tx = lx - load(px_ + k), ty = ly - load(py_ + k), tz = lz - load(pz_ + k);
+        const Double4 dist = lanes::sqrt(tx * tx + ty * ty + tz * tz);
+        const Double4 dx = tx / dist, dy = ty / dist, dz = tz / dist;
+        const Double4 nl = load(nx_ + k) * dx + load(ny_ + k) * dy + load(nz_ + k) * dz;
+        const unsigned lit = less(load(pointError_ + k), dist) & lessEqual(eps, nl);
+        store(pl.dirX + k, dx), store(pl.dirY + k, dy), store(pl.dirZ + k, dz), store(pl.dist + k, dist);
+        for (int i = 0; i < 4; ++i) {
+          pl.lit[k + i] = (lit >> i & 1u) != 0;
+          pl.occlusion[k + i] = kUnknown;
+        }
       }
     }
     if constexpr ((E & kShadows) != 0) {
@@ -78,7 +110,7 @@ class Tracer {
         continue;
       }
       ++stats_.shadingOps;
-      knownRow_ = known_.data() + size_t(k) * lights;
+      knownRay_ = k;
       out[k] = shadeAt(rays[k], scene_.bvh.primitives()[hits[k]->primitive], hits[k]->hit, points_[k], normals_[k],
                        1, 1.0, inside);
     }
@@ -112,9 +144,15 @@ class Tracer {
     Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
                    pig.rgb * f.emission * alpha;
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
-    const KnownLight* known = std::exchange(knownRow_, nullptr);
-    for (size_t j = 0; j < scene_.lights.size(); ++j)
-      result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, known ? &known[j] : nullptr);
+    const int known = std::exchange(knownRay_, -1);
+    for (size_t j = 0; j < scene_.lights.size(); ++j) {
+      if (known >= 0) {
+        const KnownLight kl = known_[j].at(known);
+        result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, &kl);
+      } else {
+        result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, nullptr);
+      }
+    }
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
@@ -223,21 +261,20 @@ class Tracer {
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) return;  // sampled per hit, as before
     }
-    const size_t lights = scene_.lights.size();
+    PacketLight& pl = known_[j];
     const double tol = scene_.tol.shadow;
     int m = 0;
     for (int k = 0; k < count; ++k) {
-      const KnownLight& kl = known_[size_t(k) * lights + j];
-      if (!hits[k] || !kl.lit) continue;  // lightContribution stops before its shadow ray
+      if (!hits[k] || !pl.lit[k]) continue;  // lightContribution stops before its shadow ray
       // The segment segmentTransmittance() would trace.
-      segments_[m] = Ray{offsetRayOrigin(points_[k], normals_[k], kl.dir), kl.dir};
-      segmentEnd_[m] = kl.dist - tol;
+      segments_[m] = Ray{shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}};
+      segmentEnd_[m] = pl.dist[k] - tol;
       segmentRay_[m++] = k;
     }
     if (m == 0) return;
     scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, m, tol, occlusion_, blocker_,
                                stats_.intersectionTests);
-    for (int i = 0; i < m; ++i) known_[size_t(segmentRay_[i]) * lights + j].occlusion = uint8_t(occlusion_[i]);
+    for (int i = 0; i < m; ++i) pl.occlusion[segmentRay_[i]] = uint8_t(occlusion_[i]);
   }
 
   Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
@@ -423,13 +460,17 @@ class Tracer {
   std::optional<ClosestHit> hits_[kMaxPacket];
   SurfacePoint points_[kMaxPacket];
   Vec3 normals_[kMaxPacket];
+  Vec3 shadowOrigin_[kMaxPacket];  // where every shadow segment of a hit starts
+  double px_[kMaxPacket], py_[kMaxPacket], pz_[kMaxPacket];
+  double nx_[kMaxPacket], ny_[kMaxPacket], nz_[kMaxPacket];
+  double pointError_[kMaxPacket];
   Ray segments_[kMaxPacket];
   double segmentEnd_[kMaxPacket];
   int segmentRay_[kMaxPacket];
   Occlusion occlusion_[kMaxPacket];
   uint32_t blocker_[kMaxPacket];
-  std::vector<KnownLight> known_;          // ray-major, one per light
-  const KnownLight* knownRow_ = nullptr;  // the row for the hit being shaded next
+  std::vector<PacketLight> known_;  // one per light
+  int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
   std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
   std::vector<Color> cache_;
