@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "accel/lanes.h"
+#include "core/lanes.h"
 
 namespace pvrt {
 
@@ -464,12 +464,14 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
 
 void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
                         uint64_t& tests) const {
-  // Plain arrays, not value-initialised: a packet sets what it reads.
-  double best[kMaxPacket];
-  int which[kMaxPacket];
+  // Plain arrays, not value-initialised: a packet sets what it reads. The hits are kept
+  // a field per array until the end (assigning std::optionals in the loop costs more).
+  double best[kMaxPacket], hitU[kMaxPacket], hitV[kMaxPacket];
+  int hitPart[kMaxPacket], which[kMaxPacket];
+  uint32_t owner[kMaxPacket];
   for (int k = 0; k < count; ++k) {
     best[k] = tMax;
-    out[k].reset();
+    owner[k] = kNone;
   }
   LazySlabs slabs(rays);
   // Unit directions from a common origin: the ray parameter t is the cone's s.
@@ -482,7 +484,10 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       const int k = which[j];
       if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
         best[k] = h->t;
-        out[k] = ClosestHit{*h, i};
+        hitPart[k] = h->part;
+        hitU[k] = h->u;
+        hitV[k] = h->v;
+        owner[k] = i;
       }
     }
   };
@@ -505,6 +510,10 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   });
   for (int k = 0; k < count; ++k) which[k] = k;
   for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i, count);
+  for (int k = 0; k < count; ++k) {
+    if (owner[k] == kNone) out[k].reset();
+    else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};
+  }
 }
 
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "accel/lanes.h"
+#include "core/lanes.h"
 
 namespace pvrt {
 

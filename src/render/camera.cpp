@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/lanes.h"
+
 namespace pvrt {
 
 namespace {
@@ -43,6 +45,25 @@ Ray Camera::ray(int x, int y, double dx, double dy, int width, int height) const
   const double u = (x + 0.5 + dx) / width - 0.5;
   const double v = 0.5 - (y + 0.5 + dy) / height;
   return {location_, normalize(direction_ + right_ * u + up_ * v)};
+}
+
+void Camera::rays(int x, int y, const SubSample* offsets, int count, int width, int height, Ray* out) const {
+  using namespace lanes;
+  int k = 0;
+  // Lane by lane the operations of ray(), in its order.
+  const Double4 cx = splat(x + 0.5), cy = splat(y + 0.5), w = splat(width), h = splat(height), half = splat(0.5);
+  for (; k + 4 <= count; k += 4) {
+    const SubSample* s = offsets + k;
+    const Double4 u = (cx + set(s[0].dx, s[1].dx, s[2].dx, s[3].dx)) / w - half;
+    const Double4 v = half - (cy + set(s[0].dy, s[1].dy, s[2].dy, s[3].dy)) / h;
+    Double4 d[3];
+    for (int a = 0; a < 3; ++a) d[a] = splat(direction_[a]) + splat(right_[a]) * u + splat(up_[a]) * v;
+    const Double4 len = lanes::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double dir[3][4];
+    for (int a = 0; a < 3; ++a) store(dir[a], d[a] / len);
+    for (int i = 0; i < 4; ++i) out[k + i] = {location_, {dir[0][i], dir[1][i], dir[2][i]}};
+  }
+  for (; k < count; ++k) out[k] = ray(x, y, offsets[k].dx, offsets[k].dy, width, height);
 }
 
 }  // namespace pvrt

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/ray.h"
+#include "render/sampler.h"
 #include "scene/scene_desc.h"
 
 namespace pvrt {
@@ -16,6 +17,9 @@ class Camera {
   // Ray through column x + dx, row y + dy (offsets in pixels from the pixel centre,
   // dy positive downward) of a width x height image. Direction is unit length.
   Ray ray(int x, int y, double dx, double dy, int width, int height) const;
+  // ray() for `count` offsets of one pixel, four at a time: the same bits as calling
+  // ray() for each.
+  void rays(int x, int y, const SubSample* offsets, int count, int width, int height, Ray* out) const;
 
   const Vec3& location() const { return location_; }
   const Vec3& direction() const { return direction_; }

@@ -37,10 +37,7 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
         // summed in sample order, as above, so both paths give the same bits.
         for (size_t first = 0; first < offsets.size(); first += kMaxPacket) {
           const int n = int(std::min<size_t>(kMaxPacket, offsets.size() - first));
-          for (int k = 0; k < n; ++k) {
-            const SubSample& s = offsets[first + size_t(k)];
-            rays[k] = scene.camera.ray(x, y, s.dx, s.dy, w, h);
-          }
+          scene.camera.rays(x, y, offsets.data() + first, n, w, h, rays.data());
           stats.primaryRays += uint64_t(n);
           tracer.tracePacket(rays.data(), n, scene.cameraInteriors, colors.data());
           for (int k = 0; k < n; ++k) sum += colors[k];

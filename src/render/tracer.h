@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "accel/lanes.h"
+#include "core/lanes.h"
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/shading.h"

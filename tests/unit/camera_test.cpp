@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace pvrt {
 namespace {
 
@@ -22,6 +24,27 @@ TEST(Camera, PixelCentresAndRowsFromTheTop) {
   const Camera cam{CameraDesc{}};
   const Ray r = cam.ray(0, 0, 0, 0, 4, 2);  // u = (0.5)/4 - 0.5, v = 0.5 - 0.5/2
   expectNear(r.dir, normalize(Vec3{1.33 * (0.125 - 0.5), 0.25, 1}));
+}
+
+// The packet path computes four rays at a time; every one must be bit for bit the ray
+// the one-at-a-time path gives (the determinism of every backend rests on it).
+TEST(Camera, RaysOfAPixelAreExactlyItsRays) {
+  CameraDesc desc;
+  desc.location = {0.3, 6.1, -14.7};
+  desc.lookAt = Vec3{0.2, 1.1, 2.9};
+  desc.right = {1.6, 0, 0};
+  const Camera cam{desc};
+  std::vector<SubSample> offsets;
+  for (int i = 0; i < 19; ++i) offsets.push_back({-0.5 + 0.37 * i / 7.0, 0.49 - 0.051 * i});
+  std::vector<Ray> rays(offsets.size());
+  for (int count : {1, 3, 4, 17, 19}) {
+    cam.rays(1279, 3, offsets.data(), count, 1280, 800, rays.data());
+    for (int k = 0; k < count; ++k) {
+      const Ray one = cam.ray(1279, 3, offsets[size_t(k)].dx, offsets[size_t(k)].dy, 1280, 800);
+      EXPECT_EQ(rays[size_t(k)].origin, one.origin);
+      EXPECT_EQ(rays[size_t(k)].dir, one.dir) << "ray " << k << " of " << count;
+    }
+  }
 }
 
 TEST(Camera, DefaultRightIsExactly133) {

@@ -18,6 +18,7 @@ namespace pvrt::lanes {
 
 struct Double4 { __m256d v; };
 inline Double4 splat(double s) { return {_mm256_set1_pd(s)}; }
+inline Double4 set(double a, double b, double c, double d) { return {_mm256_setr_pd(a, b, c, d)}; }
 // Four floats, 16-byte aligned, widened exactly.
 inline Double4 widen(const float* p) { return {_mm256_cvtps_pd(_mm_load_ps(p))}; }
 inline Double4 operator+(Double4 a, Double4 b) { return {_mm256_add_pd(a.v, b.v)}; }
@@ -40,6 +41,7 @@ inline void store(double* out, Double4 a) { _mm256_storeu_pd(out, a.v); }
 
 struct Double4 { __m128d lo, hi; };
 inline Double4 splat(double s) { return {_mm_set1_pd(s), _mm_set1_pd(s)}; }
+inline Double4 set(double a, double b, double c, double d) { return {_mm_setr_pd(a, b), _mm_setr_pd(c, d)}; }
 inline Double4 widen(const float* p) {
   const __m128 f = _mm_load_ps(p);
   return {_mm_cvtps_pd(f), _mm_cvtps_pd(_mm_movehl_ps(f, f))};
@@ -77,6 +79,7 @@ inline Double4 each(F&& f) {
   return r;
 }
 inline Double4 splat(double s) { return {{s, s, s, s}}; }
+inline Double4 set(double a, double b, double c, double d) { return {{a, b, c, d}}; }
 inline Double4 widen(const float* p) { return each([&](int i) { return double(p[i]); }); }
 inline Double4 operator+(Double4 a, Double4 b) { return each([&](int i) { return a.v[i] + b.v[i]; }); }
 inline Double4 operator-(Double4 a, Double4 b) { return each([&](int i) { return a.v[i] - b.v[i]; }); }
