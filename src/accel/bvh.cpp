@@ -322,9 +322,13 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
   items_.reserve(prims_.size());
   for (const Primitive& p : prims_) {
     LeafItem it;
-    const SphereShape* sphere = p.transform ? nullptr : std::get_if<SphereShape>(&p.shape);
-    if (sphere) it.sphere = *sphere;
-    it.isSphere = sphere != nullptr;
+    if (const SphereShape* sphere = p.transform ? nullptr : std::get_if<SphereShape>(&p.shape)) {
+      it.sphere = *sphere;
+      it.kind = LeafItem::Kind::Sphere;
+    } else if (const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape)) {
+      it.plane = *plane;
+      it.kind = LeafItem::Kind::Plane;
+    }
     it.unit = p.unit;
     it.noShadow = p.noShadow;
     it.opaque = p.opaque;

@@ -91,15 +91,25 @@ class Bvh {
   // What the leaves need of each primitive, 40 bytes apiece beside the ~400 of a
   // Primitive, so that traversal of a big scene streams through little memory.
   struct LeafItem {
-    SphereShape sphere;     // valid when isSphere
+    enum class Kind : uint8_t { Sphere, Plane, Other };  // untransformed spheres and planes are tested from here
+    union {
+      SphereShape sphere;  // Kind::Sphere
+      PlaneShape plane;    // Kind::Plane
+    };
     float unit = 1;
-    bool isSphere = false;  // an untransformed sphere, tested from here
+    Kind kind = Kind::Other;
     bool noShadow = false;
     bool opaque = true;
+    LeafItem() : sphere{} {}
   };
   std::optional<ShapeHit> intersectItem(uint32_t i, const Ray& ray, double tMin, double tMax) const {
     const LeafItem& it = items_[i];
-    return it.isSphere ? intersectWorldSphere(it.sphere, it.unit, ray, tMin, tMax) : prims_[i].intersect(ray, tMin, tMax);
+    switch (it.kind) {
+      case LeafItem::Kind::Sphere: return intersectWorldSphere(it.sphere, it.unit, ray, tMin, tMax);
+      case LeafItem::Kind::Plane: return detail::hitPlane(it.plane, ray, tMin, tMax, it.unit);
+      case LeafItem::Kind::Other: break;
+    }
+    return prims_[i].intersect(ray, tMin, tMax);
   }
 
   std::vector<Primitive> prims_;  // bounded ones first, then unbounded

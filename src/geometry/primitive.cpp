@@ -26,20 +26,6 @@ std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double l
   return h;
 }
 
-// ---------------------------------------------------------------- plane
-
-// Tested against every ray (planes are unbounded), so the two tolerance checks compare
-// squares instead of taking the direction's length: |nd| < eps |D| and t |D| <= depth.
-std::optional<ShapeHit> hitPlane(const PlaneShape& p, const Ray& ray, double lo, double hi, double unit) {
-  const double nd = dot(p.normal, ray.dir);
-  const double len2 = dot(ray.dir, ray.dir);
-  if (nd * nd < kPovEpsilon * kPovEpsilon * len2) return std::nullopt;
-  const double t = (p.distance - dot(p.normal, ray.origin)) / nd;
-  const double depth = kDepthTolerance * unit;
-  if (t <= lo || t >= hi || t * t * len2 <= depth * depth) return std::nullopt;
-  return ShapeHit{t};
-}
-
 // ---------------------------------------------------------------- box
 
 std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, double hi, double unit) {
@@ -187,7 +173,7 @@ struct Intersector {
   bool unitDir;  // world rays have unit directions; local rays of transformed shapes need not
   double unit;   // the scene's length unit, for the shape tolerances
   std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi, unitDir, unit); }
-  std::optional<ShapeHit> operator()(const PlaneShape& p) const { return hitPlane(p, ray, lo, hi, unit); }
+  std::optional<ShapeHit> operator()(const PlaneShape& p) const { return detail::hitPlane(p, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const CylinderShape& c) const {
     return hitFrustum(c.base, c.cap, c.radius, c.radius, c.open, ray, lo, hi, unit);

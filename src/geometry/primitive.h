@@ -98,6 +98,19 @@ inline std::optional<ShapeHit> hitUnitSphere(const Vec3& center, double r2, cons
   return ShapeHit{*t};
 }
 
+// The plane test. Tested against every ray (planes are unbounded), so the two tolerance
+// checks compare squares instead of taking the direction's length: |nd| < eps |D| and
+// t |D| <= depth (`unit` scales the depth tolerance).
+inline std::optional<ShapeHit> hitPlane(const PlaneShape& p, const Ray& ray, double lo, double hi, double unit) {
+  const double nd = dot(p.normal, ray.dir);
+  const double len2 = dot(ray.dir, ray.dir);
+  if (nd * nd < kPovEpsilon * kPovEpsilon * len2) return std::nullopt;
+  const double t = (p.distance - dot(p.normal, ray.origin)) / nd;
+  const double depth = kDepthTolerance * unit;
+  if (t <= lo || t >= hi || t * t * len2 <= depth * depth) return std::nullopt;
+  return ShapeHit{t};
+}
+
 }  // namespace detail
 
 // intersect() of an untransformed sphere, for callers that keep spheres in a compact
