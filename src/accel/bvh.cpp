@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "accel/packet_rays.h"
 #include "core/lanes.h"
 
 namespace pvrt {
@@ -468,29 +469,50 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
 
 void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
                         uint64_t& tests) const {
+  PacketRays lanes;
+  lanes.set(rays, count);
   // Plain arrays, not value-initialised: a packet sets what it reads. The hits are kept
   // a field per array until the end (assigning std::optionals in the loop costs more).
-  double best[kMaxPacket], hitU[kMaxPacket], hitV[kMaxPacket];
-  int hitPart[kMaxPacket], which[kMaxPacket];
+  alignas(32) double best[kMaxPacket];
+  double hitU[kMaxPacket], hitV[kMaxPacket];
+  int hitPart[kMaxPacket];
   uint32_t owner[kMaxPacket];
-  for (int k = 0; k < count; ++k) {
-    best[k] = tMax;
-    owner[k] = kNone;
-  }
+  for (int k = 0; k < lanes.groups * 4; ++k) best[k] = k < count ? tMax : -INFINITY;
+  for (int k = 0; k < count; ++k) owner[k] = kNone;
   LazySlabs slabs(rays);
   // Unit directions from a common origin: the ray parameter t is the cone's s.
-  const PacketCone cone(rays[0].origin, [&](int k) { return rays[k].dir; }, count, tMin);
+  Vec3 lo, hi;
+  lanes.directionRange(lo, hi);
+  const PacketCone cone(rays[0].origin, lo, hi, tMin);
   double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
-  // Tests the rays which[0..n) against primitive i.
-  auto intersect = [&](uint32_t i, int n) {
-    tests += uint64_t(n);
-    for (int j = 0; j < n; ++j) {
-      const int k = which[j];
-      if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
-        best[k] = h->t;
-        hitPart[k] = h->part;
-        hitU[k] = h->u;
-        hitV[k] = h->v;
+  // Tests every ray against primitive i, four at a time for a sphere or a plane.
+  auto intersect = [&](uint32_t i) {
+    tests += uint64_t(count);
+    const LeafItem& p = items_[i];
+    if (p.kind == LeafItem::Kind::Other) {
+      for (int k = 0; k < count; ++k) {
+        if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
+          best[k] = h->t;
+          hitPart[k] = h->part;
+          hitU[k] = h->u;
+          hitV[k] = h->v;
+          owner[k] = i;
+        }
+      }
+      return;
+    }
+    double t[4];
+    for (int g = 0; g < lanes.groups; ++g) {
+      const unsigned real = count - 4 * g >= 4 ? 0xFu : (1u << (count - 4 * g)) - 1;
+      unsigned hit = (p.kind == LeafItem::Kind::Sphere
+                          ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)
+                          : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)) &
+                      real;
+      for (; hit != 0; hit &= hit - 1) {
+        const int c = __builtin_ctz(hit), k = 4 * g + c;
+        best[k] = t[c];
+        hitPart[k] = 0;
+        hitU[k] = hitV[k] = 0;
         owner[k] = i;
       }
     }
@@ -502,18 +524,14 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       found |= hitsChildren(n, slabs[k], tMin, best[k], unused) & candidates;
     return found;
   };
-  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const BvhNode& parent, int slot) {
-    // Only the rays that enter the leaf's box (for a leaf of one primitive the box test
-    // would cost about what the primitive's own test does: all of them).
-    int m = 0;
-    for (int k = 0; k < count; ++k)
-      if (n == 1 || (hitsChildren(parent, slabs[k], tMin, best[k], unused) >> slot & 1u)) which[m++] = k;
-    for (uint32_t i = first; i < first + n; ++i) intersect(i, m);
+  // A leaf's primitives are tested against every ray: four rays cost one vector test,
+  // about what one ray's box test would cost to rule them out.
+  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
+    for (uint32_t i = first; i < first + n; ++i) intersect(i);
     farthest = *std::max_element(best, best + count);
     return false;
   });
-  for (int k = 0; k < count; ++k) which[k] = k;
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i, count);
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i);
   for (int k = 0; k < count; ++k) {
     if (owner[k] == kNone) out[k].reset();
     else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};
@@ -525,7 +543,7 @@ namespace {
 // Can the plane lie between the apex and any segment start? Not when all of them are on
 // one side of it with a margin far above rounding (then every segment's parameter at the
 // plane falls outside the segment, as the exact test would find).
-bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, const int* live, int n) {
+bool planeSeparates(const Primitive& p, const Vec3& apex, const PacketRays& lanes, uint64_t live) {
   const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape);
   if (!plane) return false;
   auto side = [&](const Vec3& x) {
@@ -535,8 +553,10 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, c
   };
   const int s = side(apex);
   if (s == 0) return false;
-  for (int i = 0; i < n; ++i)
-    if (side(segments[live[i]].origin) != s) return false;
+  for (; live != 0; live &= live - 1) {
+    const int k = __builtin_ctzll(live);
+    if (side({lanes.ox[k], lanes.oy[k], lanes.oz[k]}) != s) return false;
+  }
   return true;
 }
 
@@ -544,63 +564,70 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const Ray* segments, c
 
 void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                           Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  int live[kMaxPacket], inBox[kMaxPacket];
-  int n = count;
-  for (int k = 0; k < count; ++k) {
-    out[k] = Occlusion::Clear;
-    live[k] = k;
-  }
+  static_assert(kMaxPacket <= 64, "one bit per segment in `live`");
+  // The segments not yet blocked, a bit each.
+  uint64_t live = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
+  PacketRays lanes;
+  lanes.set(segments, count);
+  alignas(32) double hi[kMaxPacket];
+  for (int k = 0; k < lanes.groups * 4; ++k) hi[k] = k < count ? tMax[k] : -INFINITY;
+  for (int k = 0; k < count; ++k) out[k] = Occlusion::Clear;
   LazySlabs slabs(segments);
-  bool retired = false;  // some segment became Blocked since `live` was last compacted
   // The cone runs from the light back to each segment's start: s in [0, 1].
-  const PacketCone cone(apex, [&](int k) { return segments[k].origin - apex; }, count, 0.0);
+  Vec3 lo, hi3;
+  lanes.originRange(apex, lo, hi3);
+  const PacketCone cone(apex, lo, hi3, 0.0);
   const double sHi = 1.0;
-  // Tests the segments rays[0..m) against primitive i; an opaque hit retires the
-  // segment (from `live`, which is compacted once the leaf is done).
-  auto test = [&](uint32_t i, const int* rays, int m) {
-    const LeafItem& p = items_[i];
-    if (p.noShadow) return;
-    tests += uint64_t(m);
-    for (int j = 0; j < m; ++j) {
-      const int k = rays[j];
-      if (out[k] == Occlusion::Blocked || !intersectItem(i, segments[k], tMin, tMax[k])) continue;
-      if (p.opaque) {
-        out[k] = Occlusion::Blocked;
-        blocker[k] = i;
-        retired = true;
-      } else {
-        out[k] = Occlusion::Transparent;
-      }
+  auto record = [&](int k, uint32_t i, bool opaque) {
+    if (opaque) {
+      out[k] = Occlusion::Blocked;
+      blocker[k] = i;
+      live &= ~(uint64_t(1) << k);
+    } else {
+      out[k] = Occlusion::Transparent;
     }
   };
-  auto compact = [&] {
-    if (!retired) return;
-    retired = false;
-    int kept = 0;
-    for (int j = 0; j < n; ++j)
-      if (out[live[j]] != Occlusion::Blocked) live[kept++] = live[j];
-    n = kept;
+  // Tests the live segments against primitive i, four at a time for a sphere or a plane.
+  auto test = [&](uint32_t i) {
+    const LeafItem& p = items_[i];
+    if (p.noShadow) return;
+    tests += uint64_t(__builtin_popcountll(live));
+    if (p.kind != LeafItem::Kind::Other) {
+      double t[4];
+      for (int g = 0; g < lanes.groups; ++g) {
+        const unsigned group = unsigned(live >> (4 * g)) & 0xFu;
+        if (group == 0) continue;
+        unsigned hit = (p.kind == LeafItem::Kind::Sphere
+                            ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, hi + 4 * g, t)
+                            : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, hi + 4 * g, t)) &
+                       group;
+        for (; hit != 0; hit &= hit - 1) record(4 * g + __builtin_ctz(hit), i, p.opaque);
+      }
+      return;
+    }
+    for (uint64_t m = live; m != 0; m &= m - 1) {
+      const int k = __builtin_ctzll(m);
+      if (intersectItem(i, segments[k], tMin, tMax[k])) record(k, i, p.opaque);
+    }
   };
   double unused[4];
   auto enters = [&](const BvhNode& node, unsigned candidates) {
     unsigned found = 0;
-    for (int j = 0; j < n && found != candidates; ++j)
-      found |= hitsChildren(node, slabs[live[j]], tMin, tMax[live[j]], unused) & candidates;
+    for (uint64_t m = live; m != 0 && found != candidates; m &= m - 1) {
+      const int k = __builtin_ctzll(m);
+      found |= hitsChildren(node, slabs[k], tMin, tMax[k], unused) & candidates;
+    }
     return found;
   };
-  traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t count, const BvhNode& parent, int slot) {
-    int m = 0;
-    for (int j = 0; j < n; ++j)
-      if (count == 1 || (hitsChildren(parent, slabs[live[j]], tMin, tMax[live[j]], unused) >> slot & 1u))
-        inBox[m++] = live[j];
-    for (uint32_t i = first; i < first + count; ++i) test(i, inBox, m);
-    compact();
-    return n == 0;
+  // A leaf's primitives are tested against every live segment: four segments cost one
+  // vector test, about what one segment's box test would cost to rule them out.
+  traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
+    for (uint32_t i = first; i < first + n && live != 0; ++i) test(i);
+    return live == 0;
   });
-  for (uint32_t i = boundedCount_; i < prims_.size() && n > 0; ++i) {
-    if (planeSeparates(prims_[i], apex, segments, live, n)) continue;
-    test(i, live, n);
-    compact();
+  for (uint32_t i = boundedCount_; i < prims_.size() && live != 0; ++i) {
+    if (planeSeparates(prims_[i], apex, lanes, live)) continue;
+    test(i);
   }
 }
 

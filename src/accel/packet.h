@@ -31,6 +31,10 @@ class PacketCone {
     }
     setRange(lo, hi);
   }
+  // The cone of vectors whose components lie in [lo, hi].
+  PacketCone(const Vec3& apex, const Vec3& lo, const Vec3& hi, double sLo) : apex_(apex), sLo_(sLo) {
+    setRange(lo, hi);
+  }
 
   // The smallest s in [sLo, sHi] at which some vector's segment may reach the box (a
   // lower bound, for ordering boxes front to back), or infinity only when none can.

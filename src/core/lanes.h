@@ -32,6 +32,11 @@ inline Double4 load(const double* p) { return {_mm256_loadu_pd(p)}; }
 inline Double4 maxOr(Double4 x, Double4 keep) { return {_mm256_max_pd(x.v, keep.v)}; }
 inline Double4 minOr(Double4 x, Double4 keep) { return {_mm256_min_pd(x.v, keep.v)}; }
 inline Double4 abs(Double4 a) { return {_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)}; }
+// std::copysign lane by lane: the magnitude of `mag` with the sign bit of `sign`.
+inline Double4 copySign(Double4 mag, Double4 sign) {
+  const __m256d s = _mm256_set1_pd(-0.0);
+  return {_mm256_or_pd(_mm256_andnot_pd(s, mag.v), _mm256_and_pd(s, sign.v))};
+}
 // Bit i set when a[i] <= b[i] (false for NaN).
 inline unsigned lessEqual(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ))); }
 inline unsigned less(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ))); }
@@ -57,6 +62,11 @@ inline Double4 minOr(Double4 x, Double4 keep) { return {_mm_min_pd(x.lo, keep.lo
 inline Double4 abs(Double4 a) {
   const __m128d sign = _mm_set1_pd(-0.0);
   return {_mm_andnot_pd(sign, a.lo), _mm_andnot_pd(sign, a.hi)};
+}
+inline Double4 copySign(Double4 mag, Double4 sign) {
+  const __m128d s = _mm_set1_pd(-0.0);
+  return {_mm_or_pd(_mm_andnot_pd(s, mag.lo), _mm_and_pd(s, sign.lo)),
+          _mm_or_pd(_mm_andnot_pd(s, mag.hi), _mm_and_pd(s, sign.hi))};
 }
 inline unsigned lessEqual(Double4 a, Double4 b) {
   return unsigned(_mm_movemask_pd(_mm_cmple_pd(a.lo, b.lo))) | unsigned(_mm_movemask_pd(_mm_cmple_pd(a.hi, b.hi))) << 2;
@@ -94,6 +104,9 @@ inline Double4 minOr(Double4 x, Double4 keep) {
   return each([&](int i) { return x.v[i] < keep.v[i] ? x.v[i] : keep.v[i]; });
 }
 inline Double4 abs(Double4 a) { return each([&](int i) { return std::fabs(a.v[i]); }); }
+inline Double4 copySign(Double4 mag, Double4 sign) {
+  return each([&](int i) { return std::copysign(mag.v[i], sign.v[i]); });
+}
 inline unsigned lessEqual(Double4 a, Double4 b) {
   unsigned m = 0;
   for (int i = 0; i < 4; ++i) m |= (a.v[i] <= b.v[i] ? 1u : 0u) << i;
