@@ -225,10 +225,10 @@ struct RaySlabs {
 // for them), and making one costs three divisions.
 class LazySlabs {
  public:
-  explicit LazySlabs(const Ray* rays) : rays_(rays) {}
+  explicit LazySlabs(const PacketRays& rays) : rays_(rays) {}
   const RaySlabs& operator[](int k) {
     if (!(made_ >> k & 1u)) {
-      slabs_[k] = RaySlabs(rays_[k]);
+      slabs_[k] = RaySlabs(rays_.ray(k));
       made_ |= uint64_t(1) << k;
     }
     return slabs_[k];
@@ -236,7 +236,7 @@ class LazySlabs {
 
  private:
   static_assert(kMaxPacket <= 64, "one bit per ray in made_");
-  const Ray* rays_;
+  const PacketRays& rays_;
   uint64_t made_ = 0;
   RaySlabs slabs_[kMaxPacket];
 };
@@ -479,7 +479,7 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   uint32_t owner[kMaxPacket];
   for (int k = 0; k < lanes.groups * 4; ++k) best[k] = k < count ? tMax : -INFINITY;
   for (int k = 0; k < count; ++k) owner[k] = kNone;
-  LazySlabs slabs(rays);
+  LazySlabs slabs(lanes);
   // Unit directions from a common origin: the ray parameter t is the cone's s.
   Vec3 lo, hi;
   lanes.directionRange(lo, hi);
@@ -564,19 +564,25 @@ bool planeSeparates(const Primitive& p, const Vec3& apex, const PacketRays& lane
 
 void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                           Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  static_assert(kMaxPacket <= 64, "one bit per segment in `live`");
-  // The segments not yet blocked, a bit each.
-  uint64_t live = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
   PacketRays lanes;
   lanes.set(segments, count);
   alignas(32) double hi[kMaxPacket];
   for (int k = 0; k < lanes.groups * 4; ++k) hi[k] = k < count ? tMax[k] : -INFINITY;
+  occlusionPacket(apex, lanes, hi, tMin, out, blocker, tests);
+}
+
+void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
+                          Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  static_assert(kMaxPacket <= 64, "one bit per segment in `live`");
+  const int count = lanes.count;
+  // The segments not yet blocked, a bit each.
+  uint64_t live = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
   for (int k = 0; k < count; ++k) out[k] = Occlusion::Clear;
-  LazySlabs slabs(segments);
+  LazySlabs slabs(lanes);
   // The cone runs from the light back to each segment's start: s in [0, 1].
-  Vec3 lo, hi3;
-  lanes.originRange(apex, lo, hi3);
-  const PacketCone cone(apex, lo, hi3, 0.0);
+  Vec3 lo, hi;
+  lanes.originRange(apex, lo, hi);
+  const PacketCone cone(apex, lo, hi, 0.0);
   const double sHi = 1.0;
   auto record = [&](int k, uint32_t i, bool opaque) {
     if (opaque) {
@@ -598,8 +604,8 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
         const unsigned group = unsigned(live >> (4 * g)) & 0xFu;
         if (group == 0) continue;
         unsigned hit = (p.kind == LeafItem::Kind::Sphere
-                            ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, hi + 4 * g, t)
-                            : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, hi + 4 * g, t)) &
+                            ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)
+                            : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)) &
                        group;
         for (; hit != 0; hit &= hit - 1) record(4 * g + __builtin_ctz(hit), i, p.opaque);
       }
@@ -607,7 +613,7 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
     }
     for (uint64_t m = live; m != 0; m &= m - 1) {
       const int k = __builtin_ctzll(m);
-      if (intersectItem(i, segments[k], tMin, tMax[k])) record(k, i, p.opaque);
+      if (intersectItem(i, lanes.ray(k), tMin, tMax[k])) record(k, i, p.opaque);
     }
   };
   double unused[4];

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "accel/packet.h"
+#include "accel/packet_rays.h"
 #include "geometry/primitive.h"
 
 namespace pvrt {
@@ -81,6 +82,10 @@ class Bvh {
   // (tMin, tMax[k]), with segments[k].origin + dir * (tMax[k] + tMin) = apex.
   void occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                        Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+  // The same for segments given a component per array; tMax has a lane for each of
+  // segments.groups * 4, and -infinity in the padding ones.
+  void occlusionPacket(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin, Occlusion* out,
+                       uint32_t* blocker, uint64_t& tests) const;
 
  private:
   template <class Enters, class Leaf>

@@ -23,14 +23,20 @@ struct PacketRays {
   int groups = 0;  // of four lanes
 
   void set(const Ray* rays, int n) {
+    for (int k = 0; k < n; ++k) set(k, rays[k].origin, rays[k].dir);
+    finish(n);
+  }
+  void set(int k, const Vec3& origin, const Vec3& dir) {
+    ox[k] = origin.x, oy[k] = origin.y, oz[k] = origin.z;
+    dx[k] = dir.x, dy[k] = dir.y, dz[k] = dir.z;
+  }
+  // After set(k, ...) for k in [0, n): the count, and the padding.
+  void finish(int n) {
     count = n;
     groups = (n + 3) / 4;
-    for (int k = 0; k < n; ++k) {
-      ox[k] = rays[k].origin.x, oy[k] = rays[k].origin.y, oz[k] = rays[k].origin.z;
-      dx[k] = rays[k].dir.x, dy[k] = rays[k].dir.y, dz[k] = rays[k].dir.z;
-    }
     for (int k = n; k < groups * 4; ++k) ox[k] = oy[k] = oz[k] = dx[k] = dy[k] = dz[k] = NAN;
   }
+  Ray ray(int k) const { return {{ox[k], oy[k], oz[k]}, {dx[k], dy[k], dz[k]}}; }
 
   // The componentwise range of the directions, or of the origins less `base`.
   void directionRange(Vec3& lo, Vec3& hi) const { range(dx, dy, dz, Vec3(0.0), lo, hi); }

@@ -33,9 +33,10 @@ class Tracer {
   // four rays are done at once (the divisions and square roots are most of the cost).
   struct PacketLight {
     double dirX[kMaxPacket], dirY[kMaxPacket], dirZ[kMaxPacket], dist[kMaxPacket];
-    bool lit[kMaxPacket];
-    uint8_t occlusion[kMaxPacket];
-    KnownLight at(int k) const { return {{dirX[k], dirY[k], dirZ[k]}, dist[k], lit[k], occlusion[k]}; }
+    uint64_t lit;                    // a bit per ray
+    uint8_t occlusion[kMaxPacket];  // set by resolveShadows for the lit rays
+    bool isLit(int k) const { return (lit >> k & 1u) != 0; }
+    KnownLight at(int k) const { return {{dirX[k], dirY[k], dirZ[k]}, dist[k], isLit(k), occlusion[k]}; }
   };
 
  public:
@@ -87,6 +88,7 @@ class Tracer {
       PacketLight& pl = known_[j];
       const Vec3& at = scene_.lights[j].location;
       const Double4 lx = splat(at.x), ly = splat(at.y), lz = splat(at.z), eps = splat(kPovEpsilon);
+      pl.lit = 0;
       for (int k = 0; k < padded; k += 4) {
         // Lane by lane the operations of length(), operator/ and dot(), in their order.
         const Double4 tx = lx - load(px_ + k), ty = ly - load(py_ + k), tz = lz - load(pz_ + k);
@@ -95,10 +97,7 @@ class Tracer {
         const Double4 nl = load(nx_ + k) * dx + load(ny_ + k) * dy + load(nz_ + k) * dz;
         const unsigned lit = less(load(pointError_ + k), dist) & lessEqual(eps, nl);
         store(pl.dirX + k, dx), store(pl.dirY + k, dy), store(pl.dirZ + k, dz), store(pl.dist + k, dist);
-        for (int i = 0; i < 4; ++i) {
-          pl.lit[k + i] = (lit >> i & 1u) != 0;
-          pl.occlusion[k + i] = kUnknown;
-        }
+        pl.lit |= uint64_t(lit) << k;
       }
     }
     if constexpr ((E & kShadows) != 0) {
@@ -258,21 +257,26 @@ class Tracer {
   void resolveShadows(const std::optional<ClosestHit>* hits, int count, size_t j) {
     const Light& light = scene_.lights[j];
     if (light.shadowless) return;
-    if constexpr ((E & kAreaLights) != 0) {
-      if (light.area) return;  // sampled per hit, as before
-    }
     PacketLight& pl = known_[j];
+    if constexpr ((E & kAreaLights) != 0) {
+      if (light.area) {  // sampled per hit, as before
+        std::fill(pl.occlusion, pl.occlusion + count, kUnknown);
+        return;
+      }
+    }
     const double tol = scene_.tol.shadow;
     int m = 0;
     for (int k = 0; k < count; ++k) {
-      if (!hits[k] || !pl.lit[k]) continue;  // lightContribution stops before its shadow ray
+      if (!hits[k] || !pl.isLit(k)) continue;  // lightContribution stops before its shadow ray
       // The segment segmentTransmittance() would trace.
-      segments_[m] = Ray{shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}};
+      segments_.set(m, shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]});
       segmentEnd_[m] = pl.dist[k] - tol;
       segmentRay_[m++] = k;
     }
     if (m == 0) return;
-    scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, m, tol, occlusion_, blocker_,
+    segments_.finish(m);
+    for (int i = m; i < segments_.groups * 4; ++i) segmentEnd_[i] = -INFINITY;
+    scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, occlusion_, blocker_,
                                stats_.intersectionTests);
     for (int i = 0; i < m; ++i) pl.occlusion[segmentRay_[i]] = uint8_t(occlusion_[i]);
   }
@@ -464,8 +468,8 @@ class Tracer {
   double px_[kMaxPacket], py_[kMaxPacket], pz_[kMaxPacket];
   double nx_[kMaxPacket], ny_[kMaxPacket], nz_[kMaxPacket];
   double pointError_[kMaxPacket];
-  Ray segments_[kMaxPacket];
-  double segmentEnd_[kMaxPacket];
+  PacketRays segments_;
+  alignas(32) double segmentEnd_[kMaxPacket];
   int segmentRay_[kMaxPacket];
   Occlusion occlusion_[kMaxPacket];
   uint32_t blocker_[kMaxPacket];
