@@ -145,12 +145,9 @@ class Tracer {
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
-      if (known >= 0) {
-        const KnownLight kl = known_[j].at(known);
-        result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, &kl);
-      } else {
-        result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, nullptr);
-      }
+      KnownLight kl;
+      if (known >= 0) kl = known_[j].at(known);
+      result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
 
     const double cosI = -dot(ray.dir, n);
