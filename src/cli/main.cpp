@@ -4,9 +4,11 @@
 #include <map>
 
 #include "cli/commands.h"
+#include "cli/huge_pages.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  pvrt::cli::restartWithHugePages(argv);
   CLI::App app{"pvrt: a parallel ray tracer whose pictures match POV-Ray 3.7"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pvrt 0.1.0");
