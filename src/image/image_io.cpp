@@ -57,15 +57,42 @@ std::array<float, 256> levelThresholds() {
 
 }  // namespace
 
+namespace {
+
+// The levels by float bit pattern: bucket b holds the level of pattern b << kBucketShift,
+// the smallest in it. Levels rise with the bits (positive floats order like their bits),
+// and a bucket of [0, 1] spans at most a few levels, so a lookup and a step or two find
+// the level.
+constexpr int kBucketShift = 18;
+constexpr uint32_t kOne = 0x3f800000u;  // 1.0f
+
+struct LevelTable {
+  std::array<float, 256> first;  // as levelThresholds()
+  std::array<uint8_t, (kOne >> kBucketShift) + 1> bucket;
+  LevelTable() : first(levelThresholds()) {
+    int level = 0;
+    for (uint32_t b = 0; b < bucket.size(); ++b) {
+      const float start = std::bit_cast<float>(b << kBucketShift);
+      while (level < 255 && start >= first[size_t(level + 1)]) ++level;
+      bucket[b] = uint8_t(level);
+    }
+  }
+  uint8_t level(float v) const {
+    if (!(v >= first[1])) return 0;  // below level 1, negative, or NaN (as encodeSrgb8(NaN))
+    if (v >= 1.0f) return 255;
+    int l = bucket[std::bit_cast<uint32_t>(v) >> kBucketShift];
+    while (l < 255 && v >= first[size_t(l + 1)]) ++l;
+    return uint8_t(l);
+  }
+};
+
+}  // namespace
+
 std::vector<uint8_t> encodeSrgb8(const Image& image) {
-  static const std::array<float, 256> first = levelThresholds();
+  static const LevelTable table;
   const std::vector<float>& src = image.data();
   std::vector<uint8_t> out(src.size());
-  for (size_t i = 0; i < src.size(); ++i) {
-    const float v = src[i];
-    // NaN compares false everywhere and so lands on level 0, as encodeSrgb8(NaN) does.
-    out[i] = v >= first[1] ? uint8_t(std::upper_bound(first.begin() + 1, first.end(), v) - first.begin() - 1) : 0;
-  }
+  for (size_t i = 0; i < src.size(); ++i) out[i] = table.level(src[i]);
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +29,17 @@ TEST(ImageIo, TableEncodingMatchesFormula) {
       px[i] = probe;
       probe = std::nextafter(probe, 2.0f);
     }
+  }
+  // Exactly at every level's threshold and one float below it (found here by bisection
+  // over the float bit patterns, independently of the encoder's own tables).
+  for (int level = 1; level < 256; ++level) {
+    uint32_t lo = 0, hi = 0x3f800000u;
+    while (lo < hi) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      if (encodeSrgb8(double(std::bit_cast<float>(mid))) >= level) hi = mid; else lo = mid + 1;
+    }
+    px[i++] = std::bit_cast<float>(lo);
+    px[i++] = std::bit_cast<float>(lo - 1);
   }
   px[i++] = std::numeric_limits<float>::quiet_NaN();
   px[i++] = std::numeric_limits<float>::infinity();
