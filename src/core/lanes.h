@@ -1,8 +1,8 @@
-// Four doubles side by side, one lane per child of a 4-wide BVH node (or per ray of a
-// packet): an AVX register
-// when the compiler targets AVX, two SSE2 registers on any other x86-64, plain doubles
-// elsewhere. Every operation is the IEEE one lane by lane, so a lane gives exactly the
-// bits the scalar code would.
+// Four doubles side by side, one lane per child of a 4-wide BVH node or per ray of a
+// packet: an AVX register when the compiler targets AVX, two SSE2 registers on any other
+// x86-64, plain doubles elsewhere (and when PVRT_LANES_SCALAR is defined, so that this
+// version can be tested too). Every operation is the IEEE one lane by lane, so a lane
+// gives exactly the bits the scalar code would.
 #pragma once
 
 #include <cmath>
@@ -14,7 +14,7 @@
 
 namespace pvrt::lanes {
 
-#if defined(__AVX__)
+#if defined(__AVX__) && !defined(PVRT_LANES_SCALAR)
 
 struct Double4 { __m256d v; };
 inline Double4 splat(double s) { return {_mm256_set1_pd(s)}; }
@@ -42,7 +42,7 @@ inline unsigned lessEqual(Double4 a, Double4 b) { return unsigned(_mm256_movemas
 inline unsigned less(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ))); }
 inline void store(double* out, Double4 a) { _mm256_storeu_pd(out, a.v); }
 
-#elif defined(__SSE2__)
+#elif defined(__SSE2__) && !defined(PVRT_LANES_SCALAR)
 
 struct Double4 { __m128d lo, hi; };
 inline Double4 splat(double s) { return {_mm_set1_pd(s), _mm_set1_pd(s)}; }
