@@ -6,6 +6,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <future>
+#include <thread>
 
 #include "accel/packet_rays.h"
 #include "core/lanes.h"
@@ -18,6 +20,7 @@ constexpr uint32_t kNone = ~0u;
 constexpr int kBins = 16;
 constexpr int kMaxLeafSize = 4;
 constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (stack of 64)
+constexpr uint32_t kParallelItems = 20000;  // below it, a subtree is built on the thread that got it
 constexpr double kTraversalCost = 1.0;    // relative to one primitive test
 constexpr double kIntersectionCost = 1.0;
 
@@ -38,7 +41,10 @@ class Builder {
  public:
   Builder(std::vector<BuildItem>& items, std::vector<BuildNode>& nodes) : items_(items), nodes_(nodes) {}
 
-  void build(uint32_t begin, uint32_t end, int depth) {
+  // `spawn` more levels may build their right subtree on a thread of its own (into a
+  // vector of its own, appended afterwards), which gives the same tree as building
+  // everything on one thread: the node order is depth-first either way.
+  void build(uint32_t begin, uint32_t end, int depth, int spawn = 0) {
     const uint32_t self = uint32_t(nodes_.size());
     nodes_.emplace_back();
     Bounds bounds, centroids;
@@ -54,6 +60,21 @@ class Builder {
     if (mid == end) {  // a leaf
       nodes_[self].rightOrFirst = begin;
       nodes_[self].count = count;
+      return;
+    }
+    if (spawn > 0 && end - begin >= kParallelItems) {
+      std::vector<BuildNode> right;
+      right.reserve(2 * size_t(end - mid));
+      Builder other(items_, right);
+      auto task = std::async(std::launch::async, [&] { other.build(mid, end, depth + 1, spawn - 1); });
+      build(begin, mid, depth + 1, spawn - 1);
+      task.get();
+      const uint32_t offset = uint32_t(nodes_.size());
+      nodes_[self].rightOrFirst = offset;
+      for (BuildNode n : right) {
+        if (n.count == 0) n.rightOrFirst += offset;  // an interior node's right child, in `right`
+        nodes_.push_back(n);
+      }
       return;
     }
     build(begin, mid, depth + 1);
@@ -295,7 +316,7 @@ void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCo
   used = uint8_t(std::max(int(used), slot + 1));
 }
 
-Bvh::Bvh(std::vector<Primitive> primitives) {
+Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BuildItem> items;
   items.reserve(primitives.size());
@@ -307,7 +328,11 @@ Bvh::Bvh(std::vector<Primitive> primitives) {
   if (!items.empty()) {
     std::vector<BuildNode> binary;
     binary.reserve(2 * items.size());
-    Builder(items, binary).build(0, uint32_t(items.size()), 1);
+    // Each level that may spawn doubles the threads: enough levels for buildThreads.
+    int spawn = 0;
+    const unsigned threads = buildThreads > 0 ? buildThreads : std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned n = threads; n > 1; n = (n + 1) / 2) ++spawn;
+    Builder(items, binary).build(0, uint32_t(items.size()), 1, spawn);
     nodes_.reserve(binary.size() / 2 + 1);
     Collapser(binary, nodes_, stats_).collapseRoot();
   }

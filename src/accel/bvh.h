@@ -56,11 +56,13 @@ enum class Occlusion { Clear, Blocked, Transparent };
 class Bvh {
  public:
   Bvh() = default;
-  // Takes the primitives and reorders them for locality.
-  explicit Bvh(std::vector<Primitive> primitives);
+  // Takes the primitives and reorders them for locality. The build uses up to
+  // `buildThreads` threads (0: one per core); the tree is the same whatever the number.
+  explicit Bvh(std::vector<Primitive> primitives, unsigned buildThreads = 0);
 
   const std::vector<Primitive>& primitives() const { return prims_; }
   const BvhStats& stats() const { return stats_; }
+  const std::vector<BvhNode>& nodes() const { return nodes_; }
 
   // Nearest hit in (tMin, tMax). `tests` is increased by the number of primitive
   // intersection tests performed; `skipNoShadow` ignores no_shadow objects.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -345,6 +346,27 @@ TEST(Bvh, CoincidentCentroidsStillBuildABalancedTree) {
   ASSERT_TRUE(g.hit);
   EXPECT_EQ(g.object, 4999u);
   EXPECT_NEAR(g.t, 10 - 0.9999, 1e-12);
+}
+
+// Building on several threads gives the very tree one thread builds: the same nodes, in
+// the same order, over the same primitive order.
+TEST(Bvh, TheTreeDoesNotDependOnTheBuildThreads) {
+  SceneMaker gen(35);
+  const auto prims = gen.spheres(90000, 50, 0.01, 0.3);
+  const Bvh one(prims, 1), many(prims, 8);
+  ASSERT_EQ(one.nodes().size(), many.nodes().size());
+  for (size_t i = 0; i < one.nodes().size(); ++i) {
+    const BvhNode &a = one.nodes()[i], &b = many.nodes()[i];
+    ASSERT_EQ(0, std::memcmp(a.lo, b.lo, sizeof a.lo)) << "node " << i;
+    ASSERT_EQ(0, std::memcmp(a.hi, b.hi, sizeof a.hi)) << "node " << i;
+    ASSERT_EQ(0, std::memcmp(a.child, b.child, sizeof a.child)) << "node " << i;
+    ASSERT_EQ(0, std::memcmp(a.count, b.count, sizeof a.count)) << "node " << i;
+    ASSERT_EQ(a.used, b.used) << "node " << i;
+  }
+  ASSERT_EQ(one.primitives().size(), many.primitives().size());
+  for (size_t i = 0; i < one.primitives().size(); ++i)
+    ASSERT_EQ(one.primitives()[i].object, many.primitives()[i].object) << "primitive " << i;
+  EXPECT_GT(one.stats().maxDepth, 6);
 }
 
 // Packets must give every ray exactly the answer the single-ray queries give, for
