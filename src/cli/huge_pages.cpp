@@ -14,6 +14,12 @@ void restartWithHugePages(char** argv) {
 #if defined(__linux__) && defined(__GLIBC__)
   const char* off = std::getenv("PVRT_HUGE_PAGES");
   if (off && std::strcmp(off, "0") == 0) return;
+  // libgomp binds the initial thread to its first place before main() when asked to bind,
+  // and the restarted program would inherit that one-CPU mask: no restart then.
+  const char* bind = std::getenv("OMP_PROC_BIND");
+  if ((bind && std::strcmp(bind, "false") != 0 && std::strcmp(bind, "FALSE") != 0) || std::getenv("OMP_PLACES") ||
+      std::getenv("GOMP_CPU_AFFINITY"))
+    return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;  // set already (by us or the user)
   const std::string value = tunables && *tunables ? std::string(tunables) + ":glibc.malloc.hugetlb=1"

@@ -9,7 +9,9 @@ namespace pvrt::cli {
 // configured for THP "madvise" (Debian's default) need; a tunable is read only at
 // start-up, so this sets it and starts the program again, once (execv keeps the process,
 // so mpirun and shells see no difference). Nothing happens when it is already set, when
-// PVRT_HUGE_PAGES=0, or off glibc and Linux; if the restart fails, pvrt goes on as it is.
+// PVRT_HUGE_PAGES=0, when OpenMP thread binding is asked for (OMP_PROC_BIND, OMP_PLACES,
+// GOMP_CPU_AFFINITY: libgomp has pinned the first thread by then), or off glibc and
+// Linux; if the restart fails, pvrt goes on as it is.
 void restartWithHugePages(char** argv);
 
 }  // namespace pvrt::cli
