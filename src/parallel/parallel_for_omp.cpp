@@ -1,21 +1,102 @@
 // The only file that knows about OpenMP.
 #include <omp.h>
 
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#if defined(__linux__)
+#include <pthread.h>
+#include <sched.h>
+#endif
+
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
 
 namespace {
 
+// Pins the threads of a render to CPUs of their own, one each, for the length of the
+// parallel region. Left to the kernel, the two threads of a render on a 2-CPU machine
+// were moved about (at times both on one CPU): paper1 at c=16 rendered with a parallel
+// efficiency of 0.90 unpinned and 0.97 pinned. Nothing is pinned when the team is larger
+// than the CPUs the process may use (an MPI rank bound to one core, say), when OpenMP
+// binding was asked for (OMP_PROC_BIND, OMP_PLACES, GOMP_CPU_AFFINITY: the user's
+// choice stands), or when PVRT_PIN_THREADS=0. Each thread gets its own mask back at
+// the end, so nothing outside the render is affected.
+class TeamPinning {
+ public:
+  explicit TeamPinning(int workers) {
+#if defined(__linux__)
+    const char* pin = std::getenv("PVRT_PIN_THREADS");
+    if ((pin && std::strcmp(pin, "0") == 0) || std::getenv("OMP_PROC_BIND") || std::getenv("OMP_PLACES") ||
+        std::getenv("GOMP_CPU_AFFINITY"))
+      return;
+    cpu_set_t allowed;
+    if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return;
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+      if (CPU_ISSET(c, &allowed)) cpus_.push_back(c);
+    // Open MPI ranks that share a node without binding share its CPUs: each takes its
+    // own run of them, or none is pinned if they do not all fit.
+    const char* localRank = std::getenv("OMPI_COMM_WORLD_LOCAL_RANK");
+    const char* localSize = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    const size_t ranks = localSize ? size_t(std::max(1, std::atoi(localSize))) : 1;
+    first_ = localRank ? size_t(std::max(0, std::atoi(localRank))) * size_t(workers) : 0;
+    active_ = workers > 1 && ranks * size_t(workers) <= cpus_.size() && first_ + size_t(workers) <= cpus_.size();
+#else
+    (void)workers;
+#endif
+  }
+
+  // Called by every thread of the team at the start of the region, and by every thread at
+  // its end.
+  void begin(int thread, unsigned char* saved) const {
+#if defined(__linux__)
+    if (!active_) return;
+    auto* before = reinterpret_cast<cpu_set_t*>(saved);
+    if (pthread_getaffinity_np(pthread_self(), sizeof *before, before) != 0) return;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(cpus_[first_ + size_t(thread)], &one);
+    pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+#else
+    (void)thread, (void)saved;
+#endif
+  }
+  void end(const unsigned char* saved) const {
+#if defined(__linux__)
+    if (active_) pthread_setaffinity_np(pthread_self(), sizeof(cpu_set_t), reinterpret_cast<const cpu_set_t*>(saved));
+#else
+    (void)saved;
+#endif
+  }
+
+ private:
+  bool active_ = false;
+  std::vector<int> cpus_;
+  size_t first_ = 0;  // this process's first CPU in cpus_
+};
+
+#if defined(__linux__)
+constexpr size_t kMaskBytes = sizeof(cpu_set_t);
+#else
+constexpr size_t kMaskBytes = 1;
+#endif
+
 void runOpenMP(int workers, const WorkPlan& plan, const std::function<void(size_t, int)>& renderItem) {
   const long n = long(plan.items.size());
+  const TeamPinning pinning(workers);
   if (!plan.owner.empty()) {
     // Static ownership (block, cyclic): each thread walks the items it owns.
 #pragma omp parallel num_threads(workers)
     {
       const int me = omp_get_thread_num();
+      alignas(8) unsigned char saved[kMaskBytes];
+      pinning.begin(me, saved);
       for (long i = 0; i < n; ++i)
         if (plan.owner[size_t(i)] == me) renderItem(size_t(i), me);
+      pinning.end(saved);
     }
     return;
   }
@@ -35,8 +116,14 @@ void runOpenMP(int workers, const WorkPlan& plan, const std::function<void(size_
     default:  // Runtime: keep what OMP_SCHEDULE set
       break;
   }
-#pragma omp parallel for schedule(runtime) num_threads(workers)
-  for (long i = 0; i < n; ++i) renderItem(size_t(i), omp_get_thread_num());
+#pragma omp parallel num_threads(workers)
+  {
+    alignas(8) unsigned char saved[kMaskBytes];
+    pinning.begin(omp_get_thread_num(), saved);
+#pragma omp for schedule(runtime)
+    for (long i = 0; i < n; ++i) renderItem(size_t(i), omp_get_thread_num());
+    pinning.end(saved);
+  }
 }
 
 }  // namespace
