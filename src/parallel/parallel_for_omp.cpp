@@ -49,24 +49,32 @@ class TeamPinning {
 #endif
   }
 
-  // Called by every thread of the team at the start of the region, and by every thread at
-  // its end.
-  void begin(int thread, unsigned char* saved) const {
+  // What a thread's mask was before begin() pinned it.
+  struct Saved {
 #if defined(__linux__)
-    if (!active_) return;
-    auto* before = reinterpret_cast<cpu_set_t*>(saved);
-    if (pthread_getaffinity_np(pthread_self(), sizeof *before, before) != 0) return;
+    cpu_set_t mask;
+#endif
+    bool pinned = false;
+  };
+
+  // Called by every thread of the team at the start of the region, and end() with what it
+  // returned at the end.
+  Saved begin(int thread) const {
+    Saved saved;
+#if defined(__linux__)
+    if (!active_ || pthread_getaffinity_np(pthread_self(), sizeof saved.mask, &saved.mask) != 0) return saved;
     cpu_set_t one;
     CPU_ZERO(&one);
     CPU_SET(cpus_[first_ + size_t(thread)], &one);
-    pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+    saved.pinned = pthread_setaffinity_np(pthread_self(), sizeof one, &one) == 0;
 #else
-    (void)thread, (void)saved;
+    (void)thread;
 #endif
+    return saved;
   }
-  void end(const unsigned char* saved) const {
+  void end(const Saved& saved) const {
 #if defined(__linux__)
-    if (active_) pthread_setaffinity_np(pthread_self(), sizeof(cpu_set_t), reinterpret_cast<const cpu_set_t*>(saved));
+    if (saved.pinned) pthread_setaffinity_np(pthread_self(), sizeof saved.mask, &saved.mask);
 #else
     (void)saved;
 #endif
@@ -78,12 +86,6 @@ class TeamPinning {
   size_t first_ = 0;  // this process's first CPU in cpus_
 };
 
-#if defined(__linux__)
-constexpr size_t kMaskBytes = sizeof(cpu_set_t);
-#else
-constexpr size_t kMaskBytes = 1;
-#endif
-
 void runOpenMP(int workers, const WorkPlan& plan, const std::function<void(size_t, int)>& renderItem) {
   const long n = long(plan.items.size());
   const TeamPinning pinning(workers);
@@ -92,8 +94,7 @@ void runOpenMP(int workers, const WorkPlan& plan, const std::function<void(size_
 #pragma omp parallel num_threads(workers)
     {
       const int me = omp_get_thread_num();
-      alignas(8) unsigned char saved[kMaskBytes];
-      pinning.begin(me, saved);
+      const TeamPinning::Saved saved = pinning.begin(me);
       for (long i = 0; i < n; ++i)
         if (plan.owner[size_t(i)] == me) renderItem(size_t(i), me);
       pinning.end(saved);
@@ -118,8 +119,7 @@ void runOpenMP(int workers, const WorkPlan& plan, const std::function<void(size_
   }
 #pragma omp parallel num_threads(workers)
   {
-    alignas(8) unsigned char saved[kMaskBytes];
-    pinning.begin(omp_get_thread_num(), saved);
+    const TeamPinning::Saved saved = pinning.begin(omp_get_thread_num());
 #pragma omp for schedule(runtime)
     for (long i = 0; i < n; ++i) renderItem(size_t(i), omp_get_thread_num());
     pinning.end(saved);
