@@ -228,12 +228,14 @@ class Tracer {
     }
 
     const double eta = refractionEta(object, inside);
+    // A ray at the last level goes no further, bent or not: POV-Ray's TraceRay checks the
+    // level on entry for a continued ray too, it only does not count one more.
+    if (level >= scene_.globals.maxTraceLevel) return {};
     if (std::fabs(eta - 1.0) < kPovEpsilon) {
       // Straight through: POV-Ray does not spend a trace level on it.
       ++stats_.transmittedRays;
       return fade * filter * trace(spawnRay(sp, n, ray.dir), level - 1, w, next, true);
     }
-    if (level >= scene_.globals.maxTraceLevel) return {};
     const double c1 = -dot(ray.dir, n);
     const double k = 1.0 + eta * eta * (c1 * c1 - 1.0);
     if (k < 0) {
