@@ -78,7 +78,7 @@ class Tracer {
       // Every segment toward a light that lightContribution traces leaves on the side the
       // normal points to (it asks dot(n, l) >= kPovEpsilon first), so all of this hit's
       // segments start here.
-      shadowOrigin_[k] = offsetRayOrigin(points_[k], normals_[k], normals_[k]);
+      if constexpr ((E & kShadows) != 0) shadowOrigin_[k] = offsetRayOrigin(points_[k], normals_[k], normals_[k]);
       px_[k] = points_[k].p.x, py_[k] = points_[k].p.y, pz_[k] = points_[k].p.z;
       nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
       pointError_[k] = length(points_[k].error);
@@ -145,8 +145,7 @@ class Tracer {
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
-      KnownLight kl;
-      if (known >= 0) kl = known_[j].at(known);
+      const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
       result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
 
