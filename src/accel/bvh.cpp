@@ -336,15 +336,38 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
     nodes_.reserve(binary.size() / 2 + 1);
     Collapser(binary, nodes_, stats_).collapseRoot();
   }
-  prims_.reserve(primitives.size());
+  // The order the primitives take: the bounded ones as the leaves have them, then the
+  // others. Applied in place, a cycle at a time, so that a big scene does not need a second
+  // copy of its primitives.
+  std::vector<uint32_t> order;
+  order.reserve(primitives.size());
   std::vector<bool> placed(primitives.size(), false);
   for (const BuildItem& it : items) {
-    prims_.push_back(std::move(primitives[it.index]));
+    order.push_back(it.index);
     placed[it.index] = true;
   }
-  boundedCount_ = uint32_t(prims_.size());
-  for (size_t i = 0; i < primitives.size(); ++i)
-    if (!placed[i]) prims_.push_back(std::move(primitives[i]));
+  boundedCount_ = uint32_t(order.size());
+  items = {};
+  for (uint32_t i = 0; i < primitives.size(); ++i)
+    if (!placed[i]) order.push_back(i);
+  std::vector<bool> done(primitives.size(), false);
+  for (size_t i = 0; i < order.size(); ++i) {
+    if (done[i]) continue;
+    // Slot j receives the primitive at order[j], which is the next slot of the cycle and
+    // still holds its own; the cycle closes with the one taken out of slot i.
+    Primitive first = std::move(primitives[i]);
+    for (size_t j = i;;) {
+      done[j] = true;
+      const size_t from = order[j];
+      if (from == i) {
+        primitives[j] = std::move(first);
+        break;
+      }
+      primitives[j] = std::move(primitives[from]);
+      j = from;
+    }
+  }
+  prims_ = std::move(primitives);
   items_.reserve(prims_.size());
   for (const Primitive& p : prims_) {
     LeafItem it;

@@ -150,6 +150,8 @@ Scene buildScene(const SceneDesc& desc) {
   for (const LightDesc& l : desc.lights) s.lights.push_back(buildLight(l));
 
   std::vector<Primitive> prims;
+  prims.reserve(desc.objects.size());  // one each, but for meshes (which grow it)
+  s.materials.reserve(desc.objects.size());
   for (size_t i = 0; i < desc.objects.size(); ++i) {
     const ObjectDesc& o = desc.objects[i];
     const Affine xf = o.transforms.combined();

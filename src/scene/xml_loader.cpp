@@ -87,6 +87,11 @@ class Loader {
     noText(root);
     scene_.path = file_;
     bool haveCamera = false, haveGlobals = false, haveBackground = false;
+    // Room for every element up front: a scene of a million objects would otherwise be
+    // copied about twenty times as the vector grows, and fault in twice its memory.
+    size_t elements = 0;
+    for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) ++elements;
+    scene_.objects.reserve(elements);
     for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
       noText(e);
       const std::string name = e->Name();
