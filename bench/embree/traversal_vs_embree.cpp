@@ -37,9 +37,8 @@ struct Hit {
   Vec3 point, normal;  // normal facing the ray
 };
 
-// The part of the workload both tracers share: camera rays, then the shadow
-// segments of every sphere hit that `closest` reports; `occluded` answers a
-// segment.
+// The workload, for either tracer: camera rays, then the shadow segments of every sphere
+// hit that `closest` reports; `occluded` answers a segment.
 template <class Closest, class Occluded>
 Counts traceWorkload(const Scene &scene, int width, int height, Closest &&closest, Occluded &&occluded) {
   Counts c;
