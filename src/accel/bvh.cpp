@@ -1,5 +1,5 @@
 // Binned SAH build (centroids sorted into bins per axis, the cheapest split kept) of a
-// binary tree, collapsed into a 4-wide one; iterative, front-to-back traversals of it.
+// binary tree, collapsed into a wide one; iterative, front-to-back traversals of it.
 #include "accel/bvh.h"
 
 #include <algorithm>
@@ -162,8 +162,8 @@ class Builder {
   int splitAxis_ = 0;
 };
 
-// Turns the binary tree into the 4-wide one: each wide node takes the children of a
-// binary node, then keeps opening its largest interior child until it has four.
+// Turns the binary tree into the wide one: each wide node takes the children of a binary
+// node, then keeps opening its largest interior child until it has kBvhWidth.
 class Collapser {
  public:
   Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& wide, BvhStats& stats)
@@ -185,9 +185,9 @@ class Collapser {
     stats_.maxDepth = std::max(stats_.maxDepth, depth);
     const uint32_t self = uint32_t(wide_.size());
     wide_.emplace_back();
-    uint32_t kids[4] = {b + 1, binary_[b].rightOrFirst, 0, 0};
+    uint32_t kids[kBvhWidth] = {b + 1, binary_[b].rightOrFirst};
     int n = 2;
-    while (n < 4) {
+    while (n < kBvhWidth) {
       int open = -1;
       double largest = -1;
       for (int i = 0; i < n; ++i) {
@@ -222,8 +222,9 @@ class Collapser {
 };
 
 // Deep enough for any tree the build makes: the binary tree is at most about 80 levels
-// deep (48 of SAH splits, then median halving), and a 4-wide level pushes at most 3.
-constexpr int kStackSize = 256;
+// deep (48 of SAH splits, then median halving), and a wide level pushes at most
+// kBvhWidth - 1.
+constexpr int kStackSize = 80 * (kBvhWidth - 1);
 
 // One ray, ready for the four-box slab test: its origin and reciprocal direction in
 // every lane, and which side of each slab it meets first (by the sign bit of the
@@ -262,22 +263,29 @@ class LazySlabs {
   RaySlabs slabs_[kMaxPacket];
 };
 
-// The slab test of the four children of `n` at once: bit c of the result is set when the
+// The slab test of four children of a node at once: bit c of the result is set when the
 // ray enters child c's box after tMin and before tMax, and enter[c] is where. The far
 // distances get a few ulps of slack so that boundary hits are kept.
-inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
+inline unsigned hitsQuad(const BvhNode::Quad& q, const RaySlabs& r, double tMin, double tMax, double* enter) {
   using namespace lanes;
   Double4 in = splat(tMin), out = splat(tMax);
   const Double4 slack = splat(1 + 4e-16);
   for (int a = 0; a < 3; ++a) {
-    const Double4 t0 = (widen(r.nearIsHi[a] ? n.hi[a] : n.lo[a]) - r.origin[a]) * r.inv[a];
-    const Double4 t1 = (widen(r.nearIsHi[a] ? n.lo[a] : n.hi[a]) - r.origin[a]) * r.inv[a] * slack;
+    const Double4 t0 = (widen(r.nearIsHi[a] ? q.hi[a] : q.lo[a]) - r.origin[a]) * r.inv[a];
+    const Double4 t1 = (widen(r.nearIsHi[a] ? q.lo[a] : q.hi[a]) - r.origin[a]) * r.inv[a] * slack;
     // A NaN (0 * inf on a slab boundary) must not reject: it leaves the bound as it was.
     in = maxOr(t0, in);
     out = minOr(t1, out);
   }
   store(enter, in);
   return lessEqual(in, out);
+}
+
+// hitsQuad for every used quad of `n`: bit c for child c, enter[c] for each of its slots.
+inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
+  unsigned mask = hitsQuad(n.quad[0], r, tMin, tMax, enter);
+  for (int q = 1; q < n.quads(); ++q) mask |= hitsQuad(n.quad[q], r, tMin, tMax, enter + 4 * q) << (4 * q);
+  return mask;
 }
 
 }  // namespace
@@ -298,18 +306,21 @@ float floatUp(double v) {
 }  // namespace
 
 BvhNode::BvhNode() {
-  for (int a = 0; a < 3; ++a) {
-    for (int c = 0; c < 4; ++c) {
-      lo[a][c] = INFINITY;
-      hi[a][c] = -INFINITY;
+  for (Quad& q : quad) {
+    for (int a = 0; a < 3; ++a) {
+      for (int c = 0; c < 4; ++c) {
+        q.lo[a][c] = INFINITY;
+        q.hi[a][c] = -INFINITY;
+      }
     }
   }
 }
 
 void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCount) {
+  Quad& q = quad[slot / 4];
   for (int a = 0; a < 3; ++a) {
-    lo[a][slot] = floatDown(b.lo[a]);
-    hi[a][slot] = floatUp(b.hi[a]);
+    q.lo[a][slot % 4] = floatDown(b.lo[a]);
+    q.hi[a][slot % 4] = floatUp(b.hi[a]);
   }
   child[slot] = index;
   count[slot] = leafCount;
@@ -408,12 +419,12 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
           if (visit(i)) return;
       } else {
         const BvhNode& n = nodes_[at.index];
-        double enter[4];
+        double enter[kBvhWidth];
         unsigned mask = hitsChildren(n, slabs, tMin, tMax, enter);
         if (mask != 0) {
           // The children the ray enters, nearest last: it is visited now, the others
           // stacked so that the nearer ones come off first.
-          Entry hit[4];
+          Entry hit[kBvhWidth];
           int m = 0;
           for (; mask != 0; mask &= mask - 1) {
             const int c = __builtin_ctz(mask);
@@ -421,8 +432,8 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
             // Start fetching every child the ray enters now, so that in a tree far bigger
             // than the caches their misses overlap instead of coming one after another.
             if (n.count[c] == 0) {
-              __builtin_prefetch(&nodes_[n.child[c]]);
-              __builtin_prefetch(reinterpret_cast<const char*>(&nodes_[n.child[c]]) + 64);
+              for (size_t line = 0; line < sizeof(BvhNode); line += 64)
+                __builtin_prefetch(reinterpret_cast<const char*>(&nodes_[n.child[c]]) + line);
             } else {
               __builtin_prefetch(&items_[n.child[c]]);
             }
@@ -479,8 +490,8 @@ std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax,
 }
 
 // The packet version of traverse(): visits the leaves that at least one ray of the packet
-// enters, nearer child first as far as the packet's cone can tell. A node's four child
-// boxes are first tested against the whole cone (cheap, and enough for a coherent
+// enters, nearer child first as far as the packet's cone can tell. A node's child boxes
+// are first tested against the whole cone (cheap, and enough for a coherent
 // packet); those the cone may reach are then kept only if `enters(node, candidates)`
 // finds a ray that really enters them, so an incoherent packet never walks more of the
 // tree than its rays would one by one. `leaf(first, count, parent, slot)` returning true
@@ -497,10 +508,13 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
   uint32_t node = 0;
   for (;;) {
     const BvhNode& n = nodes_[node];
-    double enter[4];
-    unsigned mask = cone.entries(n.lo, n.hi, sHi, enter) & ((1u << n.used) - 1);
+    double enter[kBvhWidth];
+    unsigned mask = 0;
+    for (int q = 0; q < n.quads(); ++q)
+      mask |= cone.entries(n.quad[q].lo, n.quad[q].hi, sHi, enter + 4 * q) << (4 * q);
+    mask &= (1u << n.used) - 1;
     if (mask != 0) mask = enters(n, mask);
-    Entry hit[4];
+    Entry hit[kBvhWidth];
     int m = 0;
     for (; mask != 0; mask &= mask - 1) {
       const uint32_t c = uint32_t(__builtin_ctz(mask));
@@ -573,7 +587,7 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       }
     }
   };
-  double unused[4];
+  double unused[kBvhWidth];
   auto enters = [&](const BvhNode& n, unsigned candidates) {
     unsigned found = 0;
     for (int k = 0; k < count && found != candidates; ++k)
@@ -672,7 +686,7 @@ void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const doubl
       if (intersectItem(i, lanes.ray(k), tMin, tMax[k])) record(k, i, p.opaque);
     }
   };
-  double unused[4];
+  double unused[kBvhWidth];
   auto enters = [&](const BvhNode& node, unsigned candidates) {
     unsigned found = 0;
     for (uint64_t m = live; m != 0 && found != candidates; m &= m - 1) {

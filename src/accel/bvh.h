@@ -1,5 +1,5 @@
 // Bounding volume hierarchy over the bounded primitives of a scene: a binned-SAH binary
-// tree collapsed into a 4-wide one.
+// tree collapsed into a wide one (kBvhWidth children a node).
 // Built once, then immutable: shared read-only by every thread. Unbounded primitives
 // (planes) are kept aside and tested on every ray.
 #pragma once
@@ -16,34 +16,42 @@
 namespace pvrt {
 
 struct BvhStats {
-  uint64_t nodes = 0;   // 4-wide nodes
+  uint64_t nodes = 0;   // wide nodes
   uint64_t leaves = 0;  // leaf children (runs of at most four primitives)
-  int maxDepth = 0;     // in 4-wide nodes, counting a leaf as a level
+  int maxDepth = 0;     // in wide nodes, counting a leaf as a level
   uint64_t bytes = 0;
   double buildSeconds = 0;
 };
 
-// A node of the 4-wide tree: the boxes of up to four children side by side, one array
-// per axis and side (128 bytes, two cache lines), so that one ray tests all four with a
-// handful of vector operations and a tree of N primitives is about log4(N) deep. The
-// bounds are floats rounded outward: a box never shrinks, so every answer stays exactly
-// the one the double-precision box would give. An unused slot holds an empty box.
+// A node of the wide tree: the boxes of up to kBvhWidth children side by side, in groups of
+// four ("quads", one array per axis and side), so that one ray tests four children with a
+// handful of vector operations and a tree of N primitives is about log8(N) deep. The bounds
+// are floats rounded outward: a box never shrinks, so every answer stays exactly the one the
+// double-precision box would give. An unused slot holds an empty box.
+inline constexpr int kBvhWidth = 8;
+inline constexpr int kBvhQuads = kBvhWidth / 4;
 struct alignas(64) BvhNode {
-  float lo[3][4];  // [axis][child]
-  float hi[3][4];
+  struct Quad {
+    float lo[3][4];  // [axis][child]
+    float hi[3][4];
+  };
+  Quad quad[kBvhQuads];  // children 4q .. 4q+3
   // Interior child: its node index. Leaf child: its first primitive.
-  uint32_t child[4] = {0, 0, 0, 0};
-  uint8_t count[4] = {0, 0, 0, 0};  // primitives of a leaf child; 0 for an interior one
-  uint8_t used = 0;                 // children in slots [0, used)
+  uint32_t child[kBvhWidth] = {};
+  uint8_t count[kBvhWidth] = {};  // primitives of a leaf child; 0 for an interior one
+  uint8_t used = 0;               // children in slots [0, used)
 
   BvhNode();
   void setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCount);
   Bounds childBounds(int slot) const {
-    return {{double(lo[0][slot]), double(lo[1][slot]), double(lo[2][slot])},
-            {double(hi[0][slot]), double(hi[1][slot]), double(hi[2][slot])}};
+    const Quad& q = quad[slot / 4];
+    const int c = slot % 4;
+    return {{double(q.lo[0][c]), double(q.lo[1][c]), double(q.lo[2][c])},
+            {double(q.hi[0][c]), double(q.hi[1][c]), double(q.hi[2][c])}};
   }
+  int quads() const { return (used + 3) / 4; }
 };
-static_assert(sizeof(BvhNode) == 128);
+static_assert(sizeof(BvhNode) % 64 == 0);
 
 struct ClosestHit {
   ShapeHit hit;

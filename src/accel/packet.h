@@ -39,8 +39,8 @@ class PacketCone {
   // The smallest s in [sLo, sHi] at which some vector's segment may reach the box (a
   // lower bound, for ordering boxes front to back), or infinity only when none can.
   double entry(const Bounds& b, double sHi) const;
-  // entry() for four boxes at once, given as float bounds [axis][box] (a 4-wide BVH
-  // node's): bit c of the result is set when box c may be reached, and enter[c] is the
+  // entry() for four boxes at once, given as float bounds [axis][box] (a quad of a BVH
+  // node's children): bit c of the result is set when box c may be reached, and enter[c] is the
   // entry. Never less generous than entry().
   unsigned entries(const float (&lo)[3][4], const float (&hi)[3][4], double sHi, double* enter) const;
 

@@ -300,20 +300,20 @@ TEST(Bvh, IntersectionTestsGrowFarSlowerThanThePrimitiveCount) {
   EXPECT_LT(perRay, 10 * fewPerRay) << "100x the primitives, " << perRay / fewPerRay << "x the tests";
 }
 
-// A 4-wide tree with L leaves has between (L-1)/3 and L-1 nodes (every node but the
-// root of a one-leaf tree has 2 to 4 children); with at most a few primitives per leaf
-// there are at least N/4 leaves, and the tree is at least log4(N/4) deep but nowhere
-// near N deep.
+// A tree of width W with L leaves has between (L-1)/(W-1) and L-1 nodes (every node but
+// the root of a one-leaf tree has 2 to W children); with at most a few primitives per
+// leaf there are at least N/4 leaves, and the tree is at least logW(N/4) deep but
+// nowhere near N deep.
 TEST(Bvh, StatsDescribeTheTree) {
   SceneMaker gen(0x5eed'0009);
   constexpr size_t kN = 10000;
   const Bvh bvh(gen.spheres(kN, 20, 0.05, 0.3));
   const BvhStats& s = bvh.stats();
-  EXPECT_GE(3 * s.nodes, s.leaves - 1);
+  EXPECT_GE((kBvhWidth - 1) * s.nodes, s.leaves - 1);
   EXPECT_LE(s.nodes, s.leaves - 1);
   EXPECT_GE(s.leaves, kN / 4);
   EXPECT_LE(s.leaves, kN);
-  EXPECT_GE(s.maxDepth, int(std::log(double(kN) / 4) / std::log(4.0)));
+  EXPECT_GE(s.maxDepth, int(std::log(double(kN) / 4) / std::log(double(kBvhWidth))));
   EXPECT_LE(s.maxDepth, 64);
   EXPECT_GE(s.bytes, s.nodes * sizeof(BvhNode) + kN * sizeof(Primitive));
   EXPECT_GE(s.buildSeconds, 0.0);
@@ -357,8 +357,7 @@ TEST(Bvh, TheTreeDoesNotDependOnTheBuildThreads) {
   ASSERT_EQ(one.nodes().size(), many.nodes().size());
   for (size_t i = 0; i < one.nodes().size(); ++i) {
     const BvhNode &a = one.nodes()[i], &b = many.nodes()[i];
-    ASSERT_EQ(0, std::memcmp(a.lo, b.lo, sizeof a.lo)) << "node " << i;
-    ASSERT_EQ(0, std::memcmp(a.hi, b.hi, sizeof a.hi)) << "node " << i;
+    ASSERT_EQ(0, std::memcmp(a.quad, b.quad, sizeof a.quad)) << "node " << i;
     ASSERT_EQ(0, std::memcmp(a.child, b.child, sizeof a.child)) << "node " << i;
     ASSERT_EQ(0, std::memcmp(a.count, b.count, sizeof a.count)) << "node " << i;
     ASSERT_EQ(a.used, b.used) << "node " << i;
@@ -463,17 +462,20 @@ TEST(BvhPacket, ConeNeverMissesABoxARayHits) {
       ASSERT_LT(cone.entry(box, 30), INFINITY) << "trial " << trial;
     }
     // The four-box form the traversal uses answers as entry() does, box by box: the box
-    // sits in slot trial % 4 of a node whose other slots hold unrelated boxes.
+    // sits in slot trial % kBvhWidth of a node whose other slots hold unrelated boxes.
     BvhNode node;
-    for (int c = 0; c < 4; ++c) {
+    const int slot = trial % kBvhWidth;
+    for (int c = 0; c < kBvhWidth; ++c) {
       Bounds other;
       other.extend(gen.point(6));
       other.extend(gen.point(6));
-      node.setChild(c, c == trial % 4 ? box : other, 0, 1);
+      node.setChild(c, c == slot ? box : other, 0, 1);
     }
-    double enter[4];
-    const unsigned mask = cone.entries(node.lo, node.hi, 30, enter);
-    for (int c = 0; c < 4; ++c) {
+    unsigned mask = 0;
+    double enter[kBvhWidth];
+    for (int q = 0; q < kBvhQuads; ++q)
+      mask |= cone.entries(node.quad[q].lo, node.quad[q].hi, 30, enter + 4 * q) << (4 * q);
+    for (int c = 0; c < kBvhWidth; ++c) {
       const double one = cone.entry(node.childBounds(c), 30);
       ASSERT_EQ((mask >> c & 1u) != 0, one < INFINITY) << "trial " << trial << " slot " << c;
       if (one < INFINITY) {
@@ -481,7 +483,7 @@ TEST(BvhPacket, ConeNeverMissesABoxARayHits) {
       }
     }
     if (any) {
-      ASSERT_TRUE(mask >> (trial % 4) & 1u) << "trial " << trial;
+      ASSERT_TRUE(mask >> slot & 1u) << "trial " << trial;
     }
   }
   EXPECT_GT(hits, 1000);
