@@ -2,13 +2,31 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace pvrt {
 
+// A file name kept once for the life of the process (interned), so that a location is two
+// words, copied without allocating: a big scene keeps several locations per object, and a
+// path longer than a std::string's inline buffer would cost each of them a heap copy.
+class FileName {
+ public:
+  FileName() = default;
+  FileName(std::string_view name);  // NOLINT(google-explicit-constructor): a name is a FileName
+  FileName(const std::string& name) : FileName(std::string_view(name)) {}  // NOLINT
+  FileName(const char* name) : FileName(std::string_view(name)) {}         // NOLINT
+
+  const std::string& str() const;
+  bool operator==(const FileName& o) const { return name_ == o.name_ || str() == o.str(); }
+
+ private:
+  const std::string* name_ = nullptr;
+};
+
 struct SourceLoc {
-  std::string file;
+  FileName file;
   int line = 0;
-  std::string str() const { return file + ":" + std::to_string(line); }
+  std::string str() const { return file.str() + ":" + std::to_string(line); }
 };
 
 }  // namespace pvrt

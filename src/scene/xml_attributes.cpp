@@ -97,7 +97,7 @@ std::vector<std::string> words(const char* text) {
   return out;
 }
 
-Attributes::Attributes(const tinyxml2::XMLElement* e, const std::string& file,
+Attributes::Attributes(const tinyxml2::XMLElement* e, FileName file,
                        const std::vector<std::string_view>& known)
     : e_(e), file_(file) {
   for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) {

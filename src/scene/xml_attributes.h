@@ -36,7 +36,7 @@ class Attributes {
   // `known`: every attribute the element may carry. Any other is refused here, before a
   // value is read, so that a misspelt required attribute (`radus`) is reported as the
   // unknown one, together with the name it resembles, not as a missing `radius`.
-  Attributes(const tinyxml2::XMLElement* e, const std::string& file, const std::vector<std::string_view>& known);
+  Attributes(const tinyxml2::XMLElement* e, FileName file, const std::vector<std::string_view>& known);
 
   SourceLoc loc() const;
   Error error(const std::string& what) const;
@@ -66,7 +66,7 @@ class Attributes {
   std::string quoted(const char* name) const { return "\"" + printable(raw(name)) + "\""; }
 
   const tinyxml2::XMLElement* e_;
-  const std::string& file_;
+  FileName file_;
   std::set<std::string> used_;
 };
 

@@ -67,7 +67,7 @@ const std::vector<std::string_view>& knownAttributes(std::string_view element) {
 
 class Loader {
  public:
-  explicit Loader(std::string file) : file_(std::move(file)) {}
+  explicit Loader(const std::string& file) : file_(file) {}
 
   SceneDesc load(const tinyxml2::XMLDocument& doc) {
     const XMLElement* root = doc.RootElement();
@@ -85,7 +85,7 @@ class Loader {
       throw sceneError(locOf(root), printable(root->Name()), "the root element must be <scene>");
     attrs(root).done();
     noText(root);
-    scene_.path = file_;
+    scene_.path = file_.str();
     bool haveCamera = false, haveGlobals = false, haveBackground = false;
     // Room for every element up front: a scene of a million objects would otherwise be
     // copied about twenty times as the vector grows, and fault in twice its memory.
@@ -555,7 +555,7 @@ class Loader {
     return t;
   }
 
-  std::string file_;
+  FileName file_;
   SceneDesc scene_;
 };
 

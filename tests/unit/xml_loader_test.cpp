@@ -144,7 +144,7 @@ TEST(XmlLoader, CameraWithEveryAttributeAndTransforms) {
   EXPECT_EQ(c.transforms.steps[1].kind, TransformStep::Kind::Translate);
   EXPECT_EQ(c.transforms.steps[1].loc.line, 5);
   EXPECT_EQ(c.loc.line, 2);
-  EXPECT_EQ(c.loc.file, "t.xml");
+  EXPECT_EQ(c.loc.file.str(), "t.xml");
 }
 
 TEST(XmlLoader, LightSourceDefaults) {
