@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstddef>
 #include <cmath>
 #include <future>
 #include <thread>
@@ -37,6 +38,27 @@ struct BuildItem {
   uint32_t index;
 };
 
+// Bounds.extend() a vector at a time, for the build's passes over millions of items: the
+// min and max of all three axes in one operation each. A NaN in an item leaves the box as
+// it was, as Bounds.extend() does, so the tree is the same. Loads four doubles from each
+// Vec3 of a BuildItem (the fourth, the next field, is ignored).
+struct BuildBox {
+  lanes::Double4 lo = lanes::splat(INFINITY), hi = lanes::splat(-INFINITY);
+  void extend(const Vec3& lo3, const Vec3& hi3) {
+    lo = lanes::minOr(lanes::load(&lo3.x), lo);
+    hi = lanes::maxOr(lanes::load(&hi3.x), hi);
+  }
+  Bounds bounds() const {
+    double l[4], h[4];
+    lanes::store(l, lo);
+    lanes::store(h, hi);
+    return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+  }
+};
+static_assert(offsetof(BuildItem, centroid) >= offsetof(BuildItem, bounds) + sizeof(Bounds) &&
+                  sizeof(BuildItem) >= offsetof(BuildItem, centroid) + 4 * sizeof(double),
+              "BuildBox reads four doubles from each Vec3 of a BuildItem");
+
 class Builder {
  public:
   Builder(std::vector<BuildItem>& items, std::vector<BuildNode>& nodes) : items_(items), nodes_(nodes) {}
@@ -47,11 +69,12 @@ class Builder {
   void build(uint32_t begin, uint32_t end, int depth, int spawn = 0) {
     const uint32_t self = uint32_t(nodes_.size());
     nodes_.emplace_back();
-    Bounds bounds, centroids;
+    BuildBox box, centroidBox;
     for (uint32_t i = begin; i < end; ++i) {
-      bounds.extend(items_[i].bounds);
-      centroids.extend(items_[i].centroid);
+      box.extend(items_[i].bounds.lo, items_[i].bounds.hi);
+      centroidBox.extend(items_[i].centroid, items_[i].centroid);
     }
+    const Bounds bounds = box.bounds(), centroids = centroidBox.bounds();
     nodes_[self].bounds = bounds;
     const uint32_t count = end - begin;
     uint32_t mid = count <= 1 ? end
@@ -103,14 +126,16 @@ class Builder {
     for (int axis = 0; axis < 3; ++axis) {
       const double lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
       if (!(extent > 0)) continue;
-      std::array<Bounds, kBins> binBounds;
+      std::array<BuildBox, kBins> binBoxes;
       std::array<uint32_t, kBins> binCount{};
       const double scale = kBins / extent;
       for (uint32_t i = begin; i < end; ++i) {
         const int b = std::min(kBins - 1, int((items_[i].centroid[axis] - lo) * scale));
-        binBounds[size_t(b)].extend(items_[i].bounds);
+        binBoxes[size_t(b)].extend(items_[i].bounds.lo, items_[i].bounds.hi);
         ++binCount[size_t(b)];
       }
+      std::array<Bounds, kBins> binBounds;
+      for (int b = 0; b < kBins; ++b) binBounds[size_t(b)] = binBoxes[size_t(b)].bounds();
       // Sweep from the right to get the cost of every right side, then from the left.
       std::array<double, kBins> rightArea{};
       std::array<uint32_t, kBins> rightCount{};
