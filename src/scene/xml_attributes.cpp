@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace pvrt {
 
@@ -82,27 +83,31 @@ std::string printable(std::string_view text, size_t max) {
   return out;
 }
 
-std::vector<std::string> words(const char* text) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (const char* p = text; *p; ++p) {
-    if (*p == ' ' || *p == ',' || *p == '\t' || *p == '\n' || *p == '\r') {
-      if (!cur.empty()) out.push_back(std::move(cur));
-      cur.clear();
-    } else {
-      cur += *p;
+std::vector<std::string_view> words(const char* text) {
+  std::vector<std::string_view> out;
+  auto separator = [](char c) { return c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r'; };
+  for (const char* p = text; *p;) {
+    if (separator(*p)) {
+      ++p;
+      continue;
     }
+    const char* start = p;
+    while (*p && !separator(*p)) ++p;
+    out.emplace_back(start, size_t(p - start));
   }
-  if (!cur.empty()) out.push_back(std::move(cur));
   return out;
 }
 
 Attributes::Attributes(const tinyxml2::XMLElement* e, FileName file,
                        const std::vector<std::string_view>& known)
     : e_(e), file_(file) {
+  int count = 0;
   for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) {
     const std::string_view name = a->Name();
-    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    if (std::find(known.begin(), known.end(), name) != known.end()) {
+      if (++count > 64) throw error("more than 64 attributes");  // no element knows that many (see used_)
+      continue;
+    }
     std::string what = "unknown attribute '" + printable(name) + "'";
     std::string_view best;
     size_t bestDistance = 3;  // at most two edits away, and closer than any other
@@ -121,8 +126,14 @@ Error Attributes::missing(const char* name) const {
 std::string Attributes::raw(const char* name) const { return e_->Attribute(name); }
 
 bool Attributes::has(const char* name) {
-  used_.insert(name);
-  return e_->Attribute(name) != nullptr;
+  int i = 0;
+  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next(), ++i) {
+    if (std::strcmp(a->Name(), name) == 0) {
+      used_ |= uint64_t(1) << i;
+      return true;
+    }
+  }
+  return false;
 }
 
 double Attributes::number(const char* name) {
@@ -198,11 +209,12 @@ std::string Attributes::text(const char* name) {
 }
 
 void Attributes::done() const {
-  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next())
-    if (!used_.count(a->Name())) throw error("unknown attribute '" + printable(a->Name()) + "'");
+  int i = 0;
+  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next(), ++i)
+    if (!(used_ >> i & 1u)) throw error("unknown attribute '" + printable(a->Name()) + "'");
 }
 
-double Attributes::parseNumber(const char* name, const std::string& w) const {
+double Attributes::parseNumber(const char* name, std::string_view w) const {
   double v = 0;
   const char* begin = w.data();
   if (*begin == '+') ++begin;

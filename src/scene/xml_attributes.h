@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <set>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,8 +29,9 @@ inline constexpr double kMaxSceneNumber = 1e15;
 // boundary, "..." appended), control characters written as \n, \t, \r or \xNN.
 std::string printable(std::string_view text, size_t max = 40);
 
-// The words of "1 2 3" or "1, 2, 3".
-std::vector<std::string> words(const char* text);
+// The words of "1 2 3" or "1, 2, 3", as views into `text`: a big scene has millions of
+// numbers, and a word longer than a std::string's inline buffer would cost a heap copy.
+std::vector<std::string_view> words(const char* text);
 
 class Attributes {
  public:
@@ -56,7 +58,7 @@ class Attributes {
   bool boolean(const char* name, bool fallback);
   std::string text(const char* name);
   // One word of attribute `name` as a number: finite and within kMaxSceneNumber.
-  double parseNumber(const char* name, const std::string& word) const;
+  double parseNumber(const char* name, std::string_view word) const;
 
   // Call after reading: an attribute present but not read is unknown in this context.
   void done() const;
@@ -67,7 +69,10 @@ class Attributes {
 
   const tinyxml2::XMLElement* e_;
   FileName file_;
-  std::set<std::string> used_;
+  // Bit i: the element's i-th attribute has been asked about. The constructor refuses
+  // unknown attributes and XML refuses repeated ones, so an element has no more
+  // attributes than its known list, far fewer than 64.
+  uint64_t used_ = 0;
 };
 
 }  // namespace pvrt

@@ -80,6 +80,28 @@ TEST(XmlBadInput, Utf8TextIsAllowedAndQuotedIntact) {
   EXPECT_NO_THROW(loadSceneString("\xef\xbb\xbf<scene/>"));
 }
 
+// The scan reads plain ASCII eight bytes at a time: every offset of a bad byte, within a
+// word and across words, behind plain text and behind multi-byte characters, is found.
+TEST(XmlBadInput, EveryBadByteIsFoundWhereverItSits) {
+  const std::string plain(40, 'a');
+  for (size_t at = 0; at < plain.size(); ++at) {
+    for (const char bad : {'\x01', '\x1f', '\x80', '\xff'}) {
+      std::string s = plain;
+      s[at] = bad;
+      ASSERT_EQ(firstNonTextByte(s), at) << "offset " << at << " byte " << int(static_cast<unsigned char>(bad));
+    }
+    std::string s = plain;
+    s.replace(at, 2, "\xc3\xa9");  // a whole two-byte character: text
+    if (at + 2 <= plain.size()) {
+      ASSERT_EQ(firstNonTextByte(s.substr(0, plain.size())), std::string_view::npos) << "offset " << at;
+    }
+  }
+  // Tab, newline and carriage return are text; 0x20 and 0x7e are the plain range's ends.
+  EXPECT_EQ(firstNonTextByte("\t\n\r ~\t\n\r ~\t\n\r ~ ~"), std::string_view::npos);
+  EXPECT_EQ(firstBadCharacterReference("no references at all, just text & more"), std::string_view::npos);
+  EXPECT_EQ(firstBadCharacterReference("<a v=\"&#1;\"/>"), 6u);
+}
+
 TEST(XmlBadInput, DeepNestingIsAnErrorNotAStackOverflow) {
   std::string deep;
   for (int i = 0; i < 100000; ++i) deep += "<mesh>";
