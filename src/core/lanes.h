@@ -1,4 +1,4 @@
-// Four doubles side by side, one lane per child of a 4-wide BVH node or per ray of a
+// Four doubles side by side, one lane per child of a BVH node's quad or per ray of a
 // packet: an AVX register when the compiler targets AVX, two SSE2 registers on any other
 // x86-64, plain doubles elsewhere (and when PVRT_LANES_SCALAR is defined, so that this
 // version can be tested too). Every operation is the IEEE one lane by lane, so a lane
