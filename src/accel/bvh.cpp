@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <future>
 #include <thread>
 

@@ -17,7 +17,6 @@ class FileName {
   FileName(const char* name) : FileName(std::string_view(name)) {}         // NOLINT
 
   const std::string& str() const;
-  bool operator==(const FileName& o) const { return name_ == o.name_ || str() == o.str(); }
 
  private:
   const std::string* name_ = nullptr;

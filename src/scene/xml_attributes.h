@@ -3,15 +3,15 @@
 // becomes a one-line `file:line: error: element: what` pvrt::Error.
 #pragma once
 
-#include <optional>
-#include <set>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/source_loc.h"
 #include "core/vec3.h"
 
 namespace tinyxml2 {

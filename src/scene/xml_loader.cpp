@@ -88,7 +88,7 @@ class Loader {
     scene_.path = file_.str();
     bool haveCamera = false, haveGlobals = false, haveBackground = false;
     // Room for every element up front: a scene of a million objects would otherwise be
-    // copied about twenty times as the vector grows, and fault in twice its memory.
+    // moved about twenty times as the vector grows, each time into fresh memory.
     size_t elements = 0;
     for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) ++elements;
     scene_.objects.reserve(elements);
