@@ -24,7 +24,12 @@ void expectAffineNear(const Affine& got, const Affine& want, double tol = 1e-12)
   expectVecNear(got.t, want.t, tol);
 }
 
-TransformStep step(TransformStep::Kind kind, const Vec3& v) { return TransformStep{kind, v}; }
+TransformStep step(TransformStep::Kind kind, const Vec3& v) {
+  TransformStep s{};
+  s.kind = kind;
+  s.v = v;
+  return s;
+}
 
 // POV-Ray 3.7: #debug vstr(vrotate(<1,2,3>, <30,40,50>), ", ", 0, 5) prints
 // 1.80128, 2.50769, 2.11350.
@@ -208,7 +213,8 @@ TEST(Transform, TransformListCombinesInWrittenOrder) {
   expectVecNear(st.combined().applyPoint({1, 0, 0}), {4, 0, 0}, 0);
   // A matrix step: the shear x' = x + y after translate y 1: (1,0,0) -> (1,1,0) -> (2,1,0).
   TransformList withMatrix;
-  TransformStep shear{K::Matrix};
+  TransformStep shear{};
+  shear.kind = K::Matrix;
   shear.matrix = {1, 0, 0, 1, 1, 0, 0, 0, 1, 0, 0, 0};
   withMatrix.steps = {step(K::Translate, {0, 1, 0}), shear};
   expectVecNear(withMatrix.combined().applyPoint({1, 0, 0}), {2, 1, 0}, 0);
