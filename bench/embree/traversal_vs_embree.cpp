@@ -40,7 +40,7 @@ struct Hit {
 // The workload, for either tracer: camera rays, then the shadow segments of every sphere
 // hit that `closest` reports; `occluded` answers a segment.
 template <class Closest, class Occluded>
-Counts traceWorkload(const Scene &scene, int width, int height, Closest &&closest, Occluded &&occluded) {
+Counts traceWorkload(const Scene& scene, int width, int height, Closest&& closest, Occluded&& occluded) {
   Counts c;
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
@@ -49,7 +49,7 @@ Counts traceWorkload(const Scene &scene, int width, int height, Closest &&closes
       if (!closest(ray, hit)) continue;
       ++c.sphereHits;
       const Vec3 origin = hit.point + hit.normal * 1e-6;
-      for (const Light &light : scene.lights) {
+      for (const Light& light : scene.lights) {
         const Vec3 toLight = light.location - origin;
         const double dist = length(toLight);
         const Vec3 dir = toLight / dist;
@@ -64,14 +64,14 @@ Counts traceWorkload(const Scene &scene, int width, int height, Closest &&closes
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(const std::vector<Primitive> &prims) {
+  explicit EmbreeScene(const std::vector<Primitive>& prims) {
     device_ = rtcNewDevice(nullptr);
     scene_ = rtcNewScene(device_);
-    std::vector<const SphereShape *> spheres;
-    for (const Primitive &p : prims)
-      if (const auto *s = std::get_if<SphereShape>(&p.shape); s && !p.transform) spheres.push_back(s);
+    std::vector<const SphereShape*> spheres;
+    for (const Primitive& p : prims)
+      if (const auto* s = std::get_if<SphereShape>(&p.shape); s && !p.transform) spheres.push_back(s);
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto *v = static_cast<float *>(
+    auto* v = static_cast<float*>(
         rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.size()));
     for (size_t i = 0; i < spheres.size(); ++i) {
       v[4 * i + 0] = float(spheres[i]->center.x);
@@ -89,10 +89,10 @@ class EmbreeScene {
     rtcReleaseScene(scene_);
     rtcReleaseDevice(device_);
   }
-  EmbreeScene(const EmbreeScene &) = delete;
-  EmbreeScene &operator=(const EmbreeScene &) = delete;
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  bool closest(const Ray &r, Hit &hit) const {
+  bool closest(const Ray& r, Hit& hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -105,7 +105,7 @@ class EmbreeScene {
     if (dot(hit.normal, r.dir) > 0) hit.normal = -hit.normal;
     return true;
   }
-  bool occluded(const Ray &r, double dist) const {
+  bool occluded(const Ray& r, double dist) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
@@ -115,7 +115,7 @@ class EmbreeScene {
   }
 
  private:
-  static void setRay(RTCRay &out, const Ray &r, float tfar) {
+  static void setRay(RTCRay& out, const Ray& r, float tfar) {
     out.org_x = float(r.origin.x), out.org_y = float(r.origin.y), out.org_z = float(r.origin.z);
     out.dir_x = float(r.dir.x), out.dir_y = float(r.dir.y), out.dir_z = float(r.dir.z);
     out.tnear = 1e-6f;
@@ -133,40 +133,43 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
   if (argc != 2 && argc != 5) {
     std::fprintf(stderr, "usage: %s SCENE.xml [WIDTH HEIGHT RUNS]\n", argv[0]);
     return 2;
   }
   const int width = argc == 5 ? std::atoi(argv[2]) : 640, height = argc == 5 ? std::atoi(argv[3]) : 400;
-  const int runs = argc == 5 ? std::max(1, std::atoi(argv[4])) : 5;
+  const int runs = argc == 5 ? std::atoi(argv[4]) : 5;
+  if (width < 1 || height < 1 || runs < 1) {
+    std::fprintf(stderr, "%s: WIDTH, HEIGHT and RUNS must be positive integers\n", argv[0]);
+    return 2;
+  }
   try {
-    auto t0 = Clock::now();
     const Scene scene = buildScene(loadSceneFile(argv[1]));
     const double pvrtBuild = scene.bvh.stats().buildSeconds;
-    t0 = Clock::now();
+    auto t0 = Clock::now();
     const EmbreeScene embree(scene.bvh.primitives());
     const double embreeBuild = since(t0);
 
-    const std::vector<Primitive> &prims = scene.bvh.primitives();
-    auto pvrtClosest = [&](const Ray &r, Hit &hit) {
+    const std::vector<Primitive>& prims = scene.bvh.primitives();
+    auto pvrtClosest = [&](const Ray& r, Hit& hit) {
       uint64_t tests = 0;
       const auto found = scene.bvh.closest(r, 1e-6, 1e7, tests);
       if (!found) return false;
-      const auto *sphere = std::get_if<SphereShape>(&prims[found->primitive].shape);
+      const auto* sphere = std::get_if<SphereShape>(&prims[found->primitive].shape);
       if (!sphere) return false;  // the plane: left out, as it is for Embree
       hit.point = r.origin + r.dir * found->hit.t;
       hit.normal = normalize(hit.point - sphere->center);
       if (dot(hit.normal, r.dir) > 0) hit.normal = -hit.normal;
       return true;
     };
-    auto pvrtOccluded = [&](const Ray &r, double dist) {
+    auto pvrtOccluded = [&](const Ray& r, double dist) {
       uint64_t tests = 0;
       uint32_t blocker = 0;
       return scene.bvh.occlusion(r, 1e-6, dist, tests, blocker) == Occlusion::Blocked;
     };
-    auto embreeClosest = [&](const Ray &r, Hit &hit) { return embree.closest(r, hit); };
-    auto embreeOccluded = [&](const Ray &r, double dist) { return embree.occluded(r, dist); };
+    auto embreeClosest = [&](const Ray& r, Hit& hit) { return embree.closest(r, hit); };
+    auto embreeOccluded = [&](const Ray& r, double dist) { return embree.occluded(r, dist); };
 
     std::vector<double> pvrtTimes, embreeTimes;
     Counts pc, ec;
@@ -180,7 +183,7 @@ int main(int argc, char **argv) {
     }
     std::printf("%-8s %10s %10s %12s %12s %12s %10s\n", "tracer", "build s", "trace s", "sphere hits", "segments",
                 "blocked", "Mrays/s");
-    auto row = [&](const char *name, double build, const std::vector<double> &t, const Counts &c) {
+    auto row = [&](const char* name, double build, const std::vector<double>& t, const Counts& c) {
       const double m = median(t);
       std::printf("%-8s %10.4f %10.4f %12lu %12lu %12lu %10.2f\n", name, build, m, (unsigned long)c.sphereHits,
                   (unsigned long)c.segments, (unsigned long)c.blocked,
@@ -188,7 +191,7 @@ int main(int argc, char **argv) {
     };
     row("pvrt", pvrtBuild, pvrtTimes, pc);
     row("embree", embreeBuild, embreeTimes, ec);
-  } catch (const std::exception &e) {
+  } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;
   }
