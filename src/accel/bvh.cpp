@@ -447,6 +447,30 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
         double enter[kBvhWidth];
         unsigned mask = hitsChildren(n, slabs, tMin, tMax, enter);
         if (mask != 0) {
+          // One child or two, the common cases deep in a big tree, without a loop or a
+          // sort, whose branches a processor cannot predict.
+          const int first = __builtin_ctz(mask);
+          const unsigned rest = mask & (mask - 1);
+          if (rest == 0) {
+            at = {n.child[first], n.count[first], enter[first]};
+            continue;
+          }
+          if ((rest & (rest - 1)) == 0) {
+            const int second = __builtin_ctz(rest);
+            const Entry a{n.child[first], n.count[first], enter[first]};
+            const Entry b{n.child[second], n.count[second], enter[second]};
+            // The nearer one now, the other stacked (the second slot when they tie, as with
+            // the sort below).
+            const bool aFirst = a.enter < b.enter;
+            const Entry later = aFirst ? b : a;
+            stack[top++] = later;
+            at = aFirst ? a : b;
+            if (later.count == 0) {
+              for (size_t line = 0; line < sizeof(BvhNode); line += 64)
+                __builtin_prefetch(reinterpret_cast<const char*>(&nodes_[later.index]) + line);
+            }
+            continue;
+          }
           // The children the ray enters, nearest last: it is visited now, the others
           // stacked so that the nearer ones come off first.
           Entry hit[kBvhWidth];
