@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "accel/packet_rays.h"
+#include "accel/slabs.h"
 #include "core/lanes.h"
 
 namespace pvrt {
@@ -251,22 +252,6 @@ class Collapser {
 // kBvhWidth - 1.
 constexpr int kStackSize = 80 * (kBvhWidth - 1);
 
-// One ray, ready for the four-box slab test: its origin and reciprocal direction in
-// every lane, and which side of each slab it meets first (by the sign bit of the
-// direction, so that -0 counts as negative, as its reciprocal -inf does).
-struct RaySlabs {
-  lanes::Double4 origin[3], inv[3];
-  bool nearIsHi[3];
-  RaySlabs() = default;  // uninitialised, for arrays filled later
-  explicit RaySlabs(const Ray& ray) {
-    for (int a = 0; a < 3; ++a) {
-      origin[a] = lanes::splat(ray.origin[a]);
-      inv[a] = lanes::splat(1.0 / ray.dir[a]);
-      nearIsHi[a] = std::signbit(ray.dir[a]);
-    }
-  }
-};
-
 // The RaySlabs of a packet's rays, each made the first time it is asked for: many rays
 // of a coherent packet are never tested against a box on their own (the cone answers
 // for them), and making one costs three divisions.
@@ -287,31 +272,6 @@ class LazySlabs {
   uint64_t made_ = 0;
   RaySlabs slabs_[kMaxPacket];
 };
-
-// The slab test of four children of a node at once: bit c of the result is set when the
-// ray enters child c's box after tMin and before tMax, and enter[c] is where. The far
-// distances get a few ulps of slack so that boundary hits are kept.
-inline unsigned hitsQuad(const BvhNode::Quad& q, const RaySlabs& r, double tMin, double tMax, double* enter) {
-  using namespace lanes;
-  Double4 in = splat(tMin), out = splat(tMax);
-  const Double4 slack = splat(1 + 4e-16);
-  for (int a = 0; a < 3; ++a) {
-    const Double4 t0 = (widen(r.nearIsHi[a] ? q.hi[a] : q.lo[a]) - r.origin[a]) * r.inv[a];
-    const Double4 t1 = (widen(r.nearIsHi[a] ? q.lo[a] : q.hi[a]) - r.origin[a]) * r.inv[a] * slack;
-    // A NaN (0 * inf on a slab boundary) must not reject: it leaves the bound as it was.
-    in = maxOr(t0, in);
-    out = minOr(t1, out);
-  }
-  store(enter, in);
-  return lessEqual(in, out);
-}
-
-// hitsQuad for every used quad of `n`: bit c for child c, enter[c] for each of its slots.
-inline unsigned hitsChildren(const BvhNode& n, const RaySlabs& r, double tMin, double tMax, double* enter) {
-  unsigned mask = hitsQuad(n.quad[0], r, tMin, tMax, enter);
-  for (int q = 1; q < n.quads(); ++q) mask |= hitsQuad(n.quad[q], r, tMin, tMax, enter + 4 * q) << (4 * q);
-  return mask;
-}
 
 }  // namespace
 
@@ -430,22 +390,23 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
 template <class Visit>
 void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const {
   if (!nodes_.empty()) {
-    const RaySlabs slabs(ray);
+    const FloatRaySlabs slabs(ray);
+    const float tMinF = float(tMin);
     struct Entry {
       uint32_t index, count;  // a node, or (count > 0) a leaf's primitives
-      double enter;           // where the ray enters its box
+      float enter;            // where the ray may enter its box (FloatRaySlabs' bound)
     };
     Entry stack[kStackSize];
     int top = 0;
-    Entry at{0, 0, tMin};
+    Entry at{0, 0, tMinF};
     for (;;) {
       if (at.count > 0) {
         for (uint32_t i = at.index; i < at.index + at.count; ++i)
           if (visit(i)) return;
       } else {
         const BvhNode& n = nodes_[at.index];
-        double enter[kBvhWidth];
-        unsigned mask = hitsChildren(n, slabs, tMin, tMax, enter);
+        float enter[kBvhWidth];
+        unsigned mask = hitsNode(n, slabs, tMinF, float(tMax), enter);
         if (mask != 0) {
           // One child or two, the common cases deep in a big tree, without a loop or a
           // sort, whose branches a processor cannot predict.
@@ -496,7 +457,8 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
       }
       // The next stacked child that the ray still enters before tMax (which may have
       // shrunk since it was stacked).
-      while (top > 0 && stack[top - 1].enter > tMax) --top;
+      const float limit = FloatRaySlabs::limit(float(tMax));
+      while (top > 0 && stack[top - 1].enter > limit) --top;
       if (top == 0) break;
       at = stack[--top];
     }

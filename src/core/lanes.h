@@ -1,8 +1,9 @@
 // Four doubles side by side, one lane per child of a BVH node's quad or per ray of a
-// packet: an AVX register when the compiler targets AVX, two SSE2 registers on any other
-// x86-64, plain doubles elsewhere (and when PVRT_LANES_SCALAR is defined, so that this
-// version can be tested too). Every operation is the IEEE one lane by lane, so a lane
-// gives exactly the bits the scalar code would.
+// packet, and eight floats, one lane per child of a whole node: an AVX register when the
+// compiler targets AVX, two SSE2 registers on any other x86-64, plain numbers elsewhere
+// (and when PVRT_LANES_SCALAR is defined, so that this version can be tested too). Every
+// operation is the IEEE one lane by lane, so a lane gives exactly the bits the scalar code
+// would.
 #pragma once
 
 #include <cmath>
@@ -42,6 +43,22 @@ inline unsigned lessEqual(Double4 a, Double4 b) { return unsigned(_mm256_movemas
 inline unsigned less(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ))); }
 inline void store(double* out, Double4 a) { _mm256_storeu_pd(out, a.v); }
 
+struct Float8 { __m256 v; };
+inline Float8 splat8(float s) { return {_mm256_set1_ps(s)}; }
+// Eight floats from two 16-byte aligned groups of four: lanes 0-3 from a, 4-7 from b.
+inline Float8 load8(const float* a, const float* b) {
+  return {_mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a)), _mm_load_ps(b), 1)};
+}
+inline Float8 operator+(Float8 a, Float8 b) { return {_mm256_add_ps(a.v, b.v)}; }
+inline Float8 operator-(Float8 a, Float8 b) { return {_mm256_sub_ps(a.v, b.v)}; }
+inline Float8 operator*(Float8 a, Float8 b) { return {_mm256_mul_ps(a.v, b.v)}; }
+inline Float8 maxOr(Float8 x, Float8 keep) { return {_mm256_max_ps(x.v, keep.v)}; }
+inline Float8 minOr(Float8 x, Float8 keep) { return {_mm256_min_ps(x.v, keep.v)}; }
+inline unsigned lessEqual(Float8 a, Float8 b) {
+  return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)));
+}
+inline void store(float* out, Float8 a) { _mm256_storeu_ps(out, a.v); }
+
 #elif defined(__SSE2__) && !defined(PVRT_LANES_SCALAR)
 
 struct Double4 { __m128d lo, hi; };
@@ -77,6 +94,22 @@ inline unsigned less(Double4 a, Double4 b) {
 inline void store(double* out, Double4 a) {
   _mm_storeu_pd(out, a.lo);
   _mm_storeu_pd(out + 2, a.hi);
+}
+
+struct Float8 { __m128 lo, hi; };
+inline Float8 splat8(float s) { return {_mm_set1_ps(s), _mm_set1_ps(s)}; }
+inline Float8 load8(const float* a, const float* b) { return {_mm_load_ps(a), _mm_load_ps(b)}; }
+inline Float8 operator+(Float8 a, Float8 b) { return {_mm_add_ps(a.lo, b.lo), _mm_add_ps(a.hi, b.hi)}; }
+inline Float8 operator-(Float8 a, Float8 b) { return {_mm_sub_ps(a.lo, b.lo), _mm_sub_ps(a.hi, b.hi)}; }
+inline Float8 operator*(Float8 a, Float8 b) { return {_mm_mul_ps(a.lo, b.lo), _mm_mul_ps(a.hi, b.hi)}; }
+inline Float8 maxOr(Float8 x, Float8 keep) { return {_mm_max_ps(x.lo, keep.lo), _mm_max_ps(x.hi, keep.hi)}; }
+inline Float8 minOr(Float8 x, Float8 keep) { return {_mm_min_ps(x.lo, keep.lo), _mm_min_ps(x.hi, keep.hi)}; }
+inline unsigned lessEqual(Float8 a, Float8 b) {
+  return unsigned(_mm_movemask_ps(_mm_cmple_ps(a.lo, b.lo))) | unsigned(_mm_movemask_ps(_mm_cmple_ps(a.hi, b.hi))) << 4;
+}
+inline void store(float* out, Float8 a) {
+  _mm_storeu_ps(out, a.lo);
+  _mm_storeu_ps(out + 4, a.hi);
 }
 
 #else
@@ -118,6 +151,31 @@ inline unsigned less(Double4 a, Double4 b) {
   return m;
 }
 inline void store(double* out, Double4 a) { std::memcpy(out, a.v, sizeof a.v); }
+
+struct Float8 { float v[8]; };
+template <class F>
+inline Float8 each8(F&& f) {
+  Float8 r;
+  for (int i = 0; i < 8; ++i) r.v[i] = f(i);
+  return r;
+}
+inline Float8 splat8(float s) { return each8([&](int) { return s; }); }
+inline Float8 load8(const float* a, const float* b) { return each8([&](int i) { return i < 4 ? a[i] : b[i - 4]; }); }
+inline Float8 operator+(Float8 a, Float8 b) { return each8([&](int i) { return a.v[i] + b.v[i]; }); }
+inline Float8 operator-(Float8 a, Float8 b) { return each8([&](int i) { return a.v[i] - b.v[i]; }); }
+inline Float8 operator*(Float8 a, Float8 b) { return each8([&](int i) { return a.v[i] * b.v[i]; }); }
+inline Float8 maxOr(Float8 x, Float8 keep) {
+  return each8([&](int i) { return x.v[i] > keep.v[i] ? x.v[i] : keep.v[i]; });
+}
+inline Float8 minOr(Float8 x, Float8 keep) {
+  return each8([&](int i) { return x.v[i] < keep.v[i] ? x.v[i] : keep.v[i]; });
+}
+inline unsigned lessEqual(Float8 a, Float8 b) {
+  unsigned m = 0;
+  for (int i = 0; i < 8; ++i) m |= (a.v[i] <= b.v[i] ? 1u : 0u) << i;
+  return m;
+}
+inline void store(float* out, Float8 a) { std::memcpy(out, a.v, sizeof a.v); }
 
 #endif
 
