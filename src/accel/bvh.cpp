@@ -484,6 +484,42 @@ Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tes
   return blocked ? Occlusion::Blocked : transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 
+Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
+                                uint64_t& tests, uint32_t& blocker) const {
+  std::span<const LightBuffer::Entry> cell;
+  if (!buffer.cell(-ray.dir, cell)) return occlusion(ray, tMin, tMax, tests, blocker);
+  bool transparent = false;
+  // The occlusion() visitor: true when an opaque primitive blocks the segment.
+  const auto blocks = [&](uint32_t i) {
+    const LeafItem& p = items_[i];
+    if (p.noShadow) return false;
+    ++tests;
+    if (!intersectItem(i, ray, tMin, tMax)) return false;
+    if (!p.opaque) {
+      transparent = true;
+      return false;
+    }
+    blocker = i;
+    return true;
+  };
+  for (const LightBuffer::Entry& e : cell) {
+    if (e.near > reach) break;
+    if (blocks(e.primitive)) return Occlusion::Blocked;
+  }
+  for (uint32_t i : buffer.everywhere())
+    if (blocks(i)) return Occlusion::Blocked;
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+    if (blocks(i)) return Occlusion::Blocked;
+  return transparent ? Occlusion::Transparent : Occlusion::Clear;
+}
+
+std::vector<Bounds> Bvh::boundedBoxes() const {
+  std::vector<Bounds> boxes;
+  boxes.reserve(boundedCount_);
+  for (uint32_t i = 0; i < boundedCount_; ++i) boxes.push_back(prims_[i].bounds());
+  return boxes;
+}
+
 std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
                                        bool skipNoShadow) const {
   std::optional<ClosestHit> best;

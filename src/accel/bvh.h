@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "accel/light_buffer.h"
 #include "accel/packet.h"
 #include "accel/packet_rays.h"
 #include "geometry/primitive.h"
@@ -82,6 +83,14 @@ class Bvh {
   // ones are, else Clear. No nearest-hit ordering, so traversal stops early.
   // `blocker` receives the opaque primitive found.
   Occlusion occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const;
+
+  // occlusion() for a segment that ends at `buffer`'s light, found from the buffer's cell
+  // instead of the tree. Every point of the segment must lie within LightBuffer::kMargin
+  // radians of the light's ray along -ray.dir, and no farther than `reach` from the light.
+  Occlusion occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
+                             uint64_t& tests, uint32_t& blocker) const;
+  // The boxes of the bounded primitives, in the order of primitives(), for light buffers.
+  std::vector<Bounds> boundedBoxes() const;
 
   // closest() for each of `count` (<= kMaxPacket) unit-direction rays that all start at
   // the same point. Gives for every ray the same answer as closest() would.

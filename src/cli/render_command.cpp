@@ -87,6 +87,18 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   const BvhStats& b = scene.bvh.stats();
   fmt::print("  BVH                   {} nodes, {} leaves, depth {}, {:.1f} KiB, built in {:.4f} s\n", b.nodes,
              b.leaves, b.maxDepth, double(b.bytes) / 1024.0, b.buildSeconds);
+  size_t buffers = 0, entries = 0, bytes = 0;
+  int cells = 0;
+  for (const LightBuffer& lb : scene.lightBuffers) {
+    if (!lb.valid()) continue;
+    ++buffers;
+    entries += lb.entries();
+    bytes += lb.bytes();
+    cells = std::max(cells, lb.resolution());
+  }
+  if (buffers > 0)
+    fmt::print("  Light buffers         {} (up to {}x{} cells a face), {} entries, {:.1f} KiB, built in {:.4f} s\n",
+               buffers, cells, cells, entries, double(bytes) / 1024.0, scene.lightBufferSeconds);
   fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", loadS,
              buildS, r.seconds, writeS);
   fmt::print("  Rays per second       {:.0f}\n", r.seconds > 0 ? double(t.totalRays()) / r.seconds : 0.0);

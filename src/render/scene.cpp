@@ -1,6 +1,11 @@
 #include "render/scene.h"
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <future>
+#include <thread>
 
 #include "core/error.h"
 
@@ -168,7 +173,32 @@ Scene buildScene(const SceneDesc& desc) {
   for (Primitive& p : prims) p.unit = float(s.tol.unit);
   s.bvh = Bvh(std::move(prims));
   s.effects = deriveEffects(s, desc);
+  buildLightBuffers(s);
   return s;
+}
+
+void buildLightBuffers(Scene& s) {
+  const auto start = std::chrono::steady_clock::now();
+  s.lightBuffers.assign(s.lights.size(), LightBuffer{});
+  if ((s.effects & kShadows) == 0) return;
+  std::vector<size_t> which;
+  for (size_t j = 0; j < s.lights.size(); ++j)
+    if (!s.lights[j].area && !s.lights[j].shadowless) which.push_back(j);
+  if (which.empty() || s.bvh.primitives().empty()) return;
+  const std::vector<Bounds> boxes = s.bvh.boundedBoxes();
+  // The buffers are independent, and each the same whatever the order: one light at a
+  // time on each of up to one thread a core.
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t k; (k = next++) < which.size();)
+      s.lightBuffers[which[k]] = LightBuffer(s.lights[which[k]].location, boxes);
+  };
+  const size_t threads = std::min<size_t>(which.size(), std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::future<void>> tasks;
+  for (size_t t = 1; t < threads; ++t) tasks.push_back(std::async(std::launch::async, work));
+  work();
+  for (auto& t : tasks) t.get();
+  s.lightBufferSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::string effectNames(EffectSet e) {

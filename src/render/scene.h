@@ -42,11 +42,17 @@ struct Scene {
   std::vector<Material> materials;  // one per object, indexed by Primitive::material
   std::vector<Light> lights;
   Bvh bvh;
+  // Per light, its light buffer: for the point lights that cast shadows, when the scene has
+  // shadows; an empty one (resolution() 1, no cells) otherwise.
+  std::vector<LightBuffer> lightBuffers;
+  double lightBufferSeconds = 0;
   InteriorList cameraInteriors;  // objects whose inside contains the camera
   EffectSet effects = 0;         // kernel effects (supersampling is added per render)
   RayTolerances tol;             // minimum depths and maximum distance, in the scene's unit
 };
 
 Scene buildScene(const SceneDesc& desc);
+// Builds scene.lightBuffers for its lights and primitives (buildScene does it).
+void buildLightBuffers(Scene& scene);
 
 }  // namespace pvrt

@@ -351,12 +351,22 @@ class Tracer {
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) return areaShadow(light, p, l, inside);
     }
-    (void)light;
     if (known != kUnknown) return orderedTransmittance(p, l, dist, inside);
+    // The segment runs from p, a hair off the surface point, along the direction from the
+    // surface point to the light: within kMargin of the light's ray when that hair is small
+    // against the tolerance kept from the light (it always is but for absurd coordinates).
+    const size_t j = size_t(&light - scene_.lights.data());
+    const double shift = length(p - sp.p);
+    if (j < scene_.lightBuffers.size() && scene_.lightBuffers[j].valid() &&
+        shift <= 0.5 * LightBuffer::kMargin * scene_.tol.shadow)
+      return segmentTransmittance(p, l, dist, inside, &scene_.lightBuffers[j], shift);
     return segmentTransmittance(p, l, dist, inside);
   }
 
-  Color segmentTransmittance(const Vec3& origin, const Vec3& dir, double dist, const InteriorList& inside) {
+  // `buffer`, when given, is the light buffer of the light the segment ends at, and `shift`
+  // how far the segment's origin is from the point at `dist` from the light.
+  Color segmentTransmittance(const Vec3& origin, const Vec3& dir, double dist, const InteriorList& inside,
+                             const LightBuffer* buffer = nullptr, double shift = 0) {
     ++stats_.shadowRays;
     // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
@@ -369,7 +379,11 @@ class Tracer {
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
     uint32_t blocker = 0;
-    switch (scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker)) {
+    const Occlusion found =
+        buffer ? scene_.bvh.occlusionToLight(*buffer, segment, tol, dist - tol, (dist + shift) * (1 + 1e-9),
+                                             stats_.intersectionTests, blocker)
+               : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
+    switch (found) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;

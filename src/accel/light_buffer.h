@@ -1,0 +1,70 @@
+// Haines and Greenberg's light buffer ("The Light Buffer: A Shadow-Testing Accelerator",
+// 1986): the directions around a point light, split into the cells of a cube's six faces,
+// each cell listing the primitives seen from the light within it, nearest first. A shadow
+// segment ends at the light, so every primitive it can meet lies in the cell of its
+// direction: a segment blocked by the first primitive there costs a lookup and one test,
+// where a walk of the BVH visits a dozen nodes in a big scene. Built once per light, then
+// immutable and shared by every thread.
+//
+// The lists are conservative: a primitive is listed in every cell its bounding box may
+// be seen in, widened by kMargin radians, so that a segment whose direction is off the
+// light's by less than that (the rounding of a shadow origin, see Bvh::occlusionToLight)
+// still finds it. The answers are therefore exactly the BVH's.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/vec3.h"
+#include "geometry/bounds.h"
+
+namespace pvrt {
+
+class LightBuffer {
+ public:
+  static constexpr double kMargin = 1e-7;  // radians
+  // A primitive seen in more cells than this is tested for every segment instead; a light
+  // with more such primitives than kMaxEverywhere, or more entries than
+  // kEntriesPerPrimitive a primitive, gets no buffer (valid() is false): its segments walk
+  // the BVH.
+  static constexpr int kCrowded = 256;
+  static constexpr size_t kMaxEverywhere = 32;
+  static constexpr size_t kEntriesPerPrimitive = 8;
+
+  struct Entry {
+    float near;          // the distance from the light to the primitive's box, rounded down
+    uint32_t primitive;  // index into the BVH's primitives
+  };
+
+  LightBuffer() = default;
+  // `bounds[i]` is primitive i's box, for the first bounds.size() (bounded) primitives.
+  LightBuffer(const Vec3& light, const std::vector<Bounds>& bounds);
+
+  // Whether the buffer was built (see kMaxEverywhere).
+  bool valid() const { return !offsets_.empty(); }
+  const Vec3& light() const { return light_; }
+  // The primitives that may lie along direction `fromLight` (any length), nearest first;
+  // false for a zero or non-finite direction, which has no cell.
+  bool cell(const Vec3& fromLight, std::span<const Entry>& out) const;
+  // The primitives whose box holds the light or covers much of its view: tested for every
+  // segment.
+  std::span<const uint32_t> everywhere() const { return everywhere_; }
+
+  int resolution() const { return res_; }
+  size_t entries() const { return entries_.size(); }
+  size_t bytes() const {
+    return entries_.size() * sizeof(Entry) + offsets_.size() * sizeof(uint32_t) + everywhere_.size() * 4;
+  }
+
+ private:
+  int cellIndex(int face, int i, int j) const { return (face * res_ + j) * res_ + i; }
+
+  Vec3 light_;
+  int res_ = 1;                    // cells along each side of a face
+  std::vector<uint32_t> offsets_;  // 6 * res^2 + 1: where each cell's entries start
+  std::vector<Entry> entries_;
+  std::vector<uint32_t> everywhere_;
+};
+
+}  // namespace pvrt

@@ -1,0 +1,213 @@
+// A light buffer must be an invisible speed-up too: for every shadow segment that ends at
+// its light, it gives the answer the BVH's occlusion query gives (blocked, see-through or
+// clear), whatever the light's place: outside the scene, among the primitives, inside one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <filesystem>
+
+#include "accel/bvh.h"
+#include "accel/light_buffer.h"
+#include "geometry/primitive.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "scene/xml_loader.h"
+
+namespace pvrt {
+namespace {
+
+constexpr double kTol = 1e-3;  // the shadow tolerance kept from both ends of a segment
+
+class Maker {
+ public:
+  explicit Maker(uint64_t seed) : rng_(seed) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  Vec3 point(double half) { return {uniform(-half, half), uniform(-half, half), uniform(-half, half)}; }
+  Vec3 direction() {
+    std::normal_distribution<double> g;
+    Vec3 d;
+    do d = {g(rng_), g(rng_), g(rng_)};
+    while (length(d) < 1e-6);
+    return normalize(d);
+  }
+
+  // `n` spheres in [-half, half]^3: every seventh see-through, every eleventh no_shadow,
+  // and a floor plane.
+  std::vector<Primitive> scene(size_t n, double half, double rMin, double rMax) {
+    std::vector<Primitive> prims;
+    for (size_t i = 0; i < n; ++i) {
+      Primitive p;
+      p.shape = SphereShape{point(half), uniform(rMin, rMax)};
+      p.object = uint32_t(i);
+      p.opaque = i % 7 != 0;
+      p.noShadow = i % 11 == 0;
+      prims.push_back(p);
+    }
+    Primitive floor;
+    floor.shape = PlaneShape{{0, 1, 0}, -half};
+    floor.object = uint32_t(n);
+    prims.push_back(floor);
+    return prims;
+  }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+struct Answer {
+  Occlusion viaTree, viaBuffer;
+};
+
+// The segment from a point on the surface of primitive `i` (a sphere) toward the light,
+// started a hair off the surface, as the tracer starts it; both queries' answers.
+Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec3& onSphere, double shift) {
+  const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+  const Vec3 normal = normalize(onSphere - s.center);
+  const Vec3 toLight = buffer.light() - onSphere;
+  const double dist = length(toLight);
+  const Vec3 l = toLight / dist;
+  const Ray segment{onSphere + normal * shift, l};
+  uint64_t tests = 0;
+  uint32_t blocker = 0;
+  Answer a;
+  a.viaTree = bvh.occlusion(segment, kTol, dist - kTol, tests, blocker);
+  a.viaBuffer = bvh.occlusionToLight(buffer, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests, blocker);
+  return a;
+}
+
+void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, Maker& gen, int segments,
+                        int* blocked = nullptr) {
+  const Bvh bvh(prims);
+  const LightBuffer buffer(light, bvh.boundedBoxes());
+  int count = 0;
+  for (int k = 0; k < segments; ++k) {
+    const uint32_t i = uint32_t(gen.uniform(0, double(prims.size() - 1)));  // a sphere, not the floor
+    const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+    const Vec3 onSphere = s.center + gen.direction() * s.radius;
+    if (length(buffer.light() - onSphere) <= 2 * kTol) continue;
+    const Answer a = shadowOf(bvh, buffer, i, onSphere, 1e-12);
+    ASSERT_EQ(int(a.viaBuffer), int(a.viaTree)) << "segment " << k << " from sphere " << i;
+    count += a.viaTree == Occlusion::Blocked;
+  }
+  if (blocked) *blocked = count;
+}
+
+// A dense cloud lit from outside: most segments are blocked, some see-through.
+TEST(LightBuffer, AgreesWithTheTreeForALightOutsideTheScene) {
+  Maker gen(3);
+  const auto prims = gen.scene(3000, 10, 0.1, 0.6);
+  int blocked = 0;
+  expectBufferAgrees(prims, {3, 40, -7}, gen, 20000, &blocked);
+  EXPECT_GT(blocked, 2000);
+  EXPECT_LT(blocked, 19000);
+}
+
+// A light among the spheres sees them on every face of its cube, and close.
+TEST(LightBuffer, AgreesWithTheTreeForALightAmongThePrimitives) {
+  Maker gen(5);
+  const auto prims = gen.scene(2000, 10, 0.1, 0.8);
+  for (const Vec3 light : {Vec3{0.5, 0.25, -0.125}, Vec3{9.5, -9.5, 0}, Vec3{0, 0, 0}})
+    expectBufferAgrees(prims, light, gen, 8000);
+}
+
+// A light inside a sphere (and so inside its box): that sphere is tested for every
+// segment, and blocks every one from outside it.
+TEST(LightBuffer, APrimitiveAroundTheLightIsTestedEverywhere) {
+  Maker gen(9);
+  auto prims = gen.scene(500, 10, 0.1, 0.5);
+  Primitive shell;
+  shell.shape = SphereShape{{1, 2, 3}, 2};
+  shell.object = 999;
+  prims.push_back(shell);
+  const Bvh bvh(prims);
+  const LightBuffer buffer({1.5, 2, 3}, bvh.boundedBoxes());
+  ASSERT_EQ(buffer.everywhere().size(), 1u);
+  expectBufferAgrees(prims, {1.5, 2, 3}, gen, 4000);
+}
+
+// Segments whose direction lies on the edges and corners between the cube's faces.
+TEST(LightBuffer, AgreesOnTheEdgesBetweenFaces) {
+  std::vector<Primitive> prims;
+  const Vec3 light{0, 0, 0};
+  uint32_t id = 0;
+  for (const Vec3 d : {Vec3{1, 1, 0}, Vec3{1, -1, 0}, Vec3{0, 1, 1}, Vec3{-1, 0, 1}, Vec3{1, 1, 1}, Vec3{-1, -1, -1},
+                       Vec3{1, 0, 0}, Vec3{0, 0, -1}}) {
+    Primitive p;
+    p.shape = SphereShape{normalize(d) * 5, 0.5};
+    p.object = id++;
+    prims.push_back(p);
+    Primitive behind;  // the surface point that a segment along d leaves from
+    behind.shape = SphereShape{normalize(d) * 9, 0.5};
+    behind.object = id++;
+    prims.push_back(behind);
+  }
+  const Bvh bvh(prims);
+  const LightBuffer buffer(light, bvh.boundedBoxes());
+  for (uint32_t i = 0; i < bvh.primitives().size(); ++i) {
+    const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+    if (length(s.center) < 7) continue;
+    // The point of the far sphere that faces the light exactly: its segment runs along
+    // the edge or corner direction, through the near sphere.
+    const Vec3 onSphere = s.center - normalize(s.center) * s.radius;
+    const Answer a = shadowOf(bvh, buffer, i, onSphere, 1e-12);
+    EXPECT_EQ(a.viaTree, Occlusion::Blocked);
+    EXPECT_EQ(a.viaBuffer, Occlusion::Blocked);
+  }
+}
+
+// The buffer's lists: nearest first, and each primitive listed in the cell of the
+// direction to its centre (or tested everywhere).
+TEST(LightBuffer, ListsAreSortedAndHoldEveryPrimitive) {
+  Maker gen(13);
+  const auto prims = gen.scene(1000, 10, 0.1, 0.6);
+  const Bvh bvh(prims);
+  const std::vector<Bounds> boxes = bvh.boundedBoxes();
+  const Vec3 light{2, 30, 1};
+  const LightBuffer buffer(light, boxes);
+  EXPECT_GT(buffer.resolution(), 8);
+  for (uint32_t i = 0; i < boxes.size(); ++i) {
+    std::span<const LightBuffer::Entry> cell;
+    ASSERT_TRUE(buffer.cell(boxes[i].centroid() - light, cell));
+    bool found = false;
+    for (size_t e = 0; e < cell.size(); ++e) {
+      found |= cell[e].primitive == i;
+      if (e > 0) {
+        ASSERT_LE(cell[e - 1].near, cell[e].near);
+      }
+    }
+    for (uint32_t j : buffer.everywhere()) found |= j == i;
+    EXPECT_TRUE(found) << "primitive " << i;
+  }
+  std::span<const LightBuffer::Entry> none;
+  EXPECT_FALSE(buffer.cell({0, 0, 0}, none));
+  EXPECT_FALSE(buffer.cell({NAN, 1, 0}, none));
+}
+
+// Every scene of the repository renders the same with its light buffers as without them,
+// bit for bit.
+TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
+  int scenes = 0, buffered = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(PVRT_SOURCE_DIR "/scenes")) {
+    if (entry.path().extension() != ".xml") continue;
+    const Scene with = buildScene(loadSceneFile(entry.path().string()));
+    Scene without = with;
+    without.lightBuffers.clear();
+    RenderSettings s;
+    s.width = 64;
+    s.height = 40;
+    s.sampler.samplesPerPixel = 1;
+    const RenderResult a = render(with, s), b = render(without, s);
+    EXPECT_EQ(a.image.data(), b.image.data()) << entry.path();
+    EXPECT_EQ(a.totals.shadowRays, b.totals.shadowRays) << entry.path();
+    ++scenes;
+    for (const LightBuffer& lb : with.lightBuffers) buffered += lb.valid();
+  }
+  EXPECT_GT(scenes, 40);
+  EXPECT_GT(buffered, 40);
+}
+
+}  // namespace
+}  // namespace pvrt
