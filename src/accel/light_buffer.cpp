@@ -52,7 +52,13 @@ struct RelativeBox {
       hi[a] += grow;
     }
   }
-  bool holdsLight() const { return lo.x <= 0 && lo.y <= 0 && lo.z <= 0 && hi.x >= 0 && hi.y >= 0 && hi.z >= 0; }
+  // Holds the light, or cannot tell (a NaN bound, which the BVH's box test lets through
+  // too): such a box is tested for every segment.
+  bool holdsLight() const {
+    for (int a = 0; a < 3; ++a)
+      if (std::isnan(lo[a]) || std::isnan(hi[a])) return true;
+    return lo.x <= 0 && lo.y <= 0 && lo.z <= 0 && hi.x >= 0 && hi.y >= 0 && hi.z >= 0;
+  }
   double distance() const {
     double d2 = 0;
     for (int a = 0; a < 3; ++a) {
@@ -101,7 +107,7 @@ int resolutionFor(const std::vector<Bounds>& bounds, const Vec3& light) {
   if (size.empty()) return 8;
   std::nth_element(size.begin(), size.begin() + size.size() / 2, size.end());
   const double median = size[size.size() / 2];
-  if (!(median > 0)) return 512;
+  if (!(median > 0)) return 256;
   return int(std::clamp(std::ceil(4 / median), 8.0, 256.0));
 }
 

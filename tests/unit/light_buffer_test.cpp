@@ -128,6 +128,17 @@ TEST(LightBuffer, APrimitiveAroundTheLightIsTestedEverywhere) {
   expectBufferAgrees(prims, {1.5, 2, 3}, gen, 4000);
 }
 
+// A box the buffer cannot place (a NaN bound) is tested for every segment, as the BVH's
+// box test lets it through too.
+TEST(LightBuffer, ABoxWithANanBoundIsTestedEverywhere) {
+  const std::vector<Bounds> boxes{{{1, 1, 1}, {2, 2, 2}}, {{NAN, 1, 1}, {2, 2, 2}}, {{-3, -3, 5}, {-2, -2, NAN}}};
+  const LightBuffer buffer({0, 0, 0}, boxes);
+  ASSERT_TRUE(buffer.valid());
+  ASSERT_EQ(buffer.everywhere().size(), 2u);
+  EXPECT_EQ(buffer.everywhere()[0], 1u);
+  EXPECT_EQ(buffer.everywhere()[1], 2u);
+}
+
 // Segments whose direction lies on the edges and corners between the cube's faces.
 TEST(LightBuffer, AgreesOnTheEdgesBetweenFaces) {
   std::vector<Primitive> prims;
