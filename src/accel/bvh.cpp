@@ -467,20 +467,24 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
     if (visit(i)) return;
 }
 
+bool Bvh::blocks(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests, bool& transparent,
+                 uint32_t& blocker) const {
+  const LeafItem& p = items_[i];
+  if (p.noShadow) return false;
+  ++tests;
+  if (!intersectItem(i, ray, tMin, tMax)) return false;
+  if (!p.opaque) {
+    transparent = true;
+    return false;
+  }
+  blocker = i;
+  return true;
+}
+
 Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tests, uint32_t& blocker) const {
   bool transparent = false, blocked = false;
-  traverse(ray, tMin, tMax, [&](uint32_t i) {
-    const LeafItem& p = items_[i];
-    if (p.noShadow) return false;
-    ++tests;
-    if (!intersectItem(i, ray, tMin, tMax)) return false;
-    if (!p.opaque) {
-      transparent = true;
-      return false;
-    }
-    blocker = i;
-    return blocked = true;
-  });
+  traverse(ray, tMin, tMax,
+           [&](uint32_t i) { return blocked = blocks(i, ray, tMin, tMax, tests, transparent, blocker); });
   return blocked ? Occlusion::Blocked : transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 
@@ -489,27 +493,14 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, doubl
   std::span<const LightBuffer::Entry> cell;
   if (!buffer.cell(-ray.dir, cell)) return occlusion(ray, tMin, tMax, tests, blocker);
   bool transparent = false;
-  // The occlusion() visitor: true when an opaque primitive blocks the segment.
-  const auto blocks = [&](uint32_t i) {
-    const LeafItem& p = items_[i];
-    if (p.noShadow) return false;
-    ++tests;
-    if (!intersectItem(i, ray, tMin, tMax)) return false;
-    if (!p.opaque) {
-      transparent = true;
-      return false;
-    }
-    blocker = i;
-    return true;
-  };
   for (const LightBuffer::Entry& e : cell) {
     if (e.near > reach) break;
-    if (blocks(e.primitive)) return Occlusion::Blocked;
+    if (blocks(e.primitive, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
   }
   for (uint32_t i : buffer.everywhere())
-    if (blocks(i)) return Occlusion::Blocked;
+    if (blocks(i, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
   for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
-    if (blocks(i)) return Occlusion::Blocked;
+    if (blocks(i, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
   return transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 

@@ -109,6 +109,10 @@ class Bvh {
  private:
   template <class Enters, class Leaf>
   void traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const;
+  // The shadow queries' test of primitive i: true when it is opaque and hit in (tMin, tMax)
+  // (then `blocker` is i); a see-through hit sets `transparent`; no_shadow ones are skipped.
+  bool blocks(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests, bool& transparent,
+              uint32_t& blocker) const;
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
