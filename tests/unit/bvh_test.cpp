@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <random>
 #include <vector>
 
 #include "accel/bvh.h"
+#include "random_geometry.h"
 
 namespace pvrt {
 namespace {
@@ -22,20 +22,9 @@ Primitive make(const Shape& s, uint32_t object) {
 }
 
 // Random scenes with a fixed seed so failures reproduce.
-class SceneMaker {
+class SceneMaker : public test::RandomGeometry {
  public:
-  explicit SceneMaker(uint64_t seed) : rng_(seed) {}
-
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-  Vec3 point(double half) { return {uniform(-half, half), uniform(-half, half), uniform(-half, half)}; }
-  // Uniform on the unit sphere (normalised Gaussian).
-  Vec3 direction() {
-    std::normal_distribution<double> g;
-    Vec3 d;
-    do d = {g(rng_), g(rng_), g(rng_)};
-    while (length(d) < 1e-6);
-    return normalize(d);
-  }
+  using RandomGeometry::RandomGeometry;
   // `n` spheres in the cube [-half, half]^3, each primitive's object index its position.
   std::vector<Primitive> spheres(size_t n, double half, double rMin, double rMax) {
     std::vector<Primitive> prims;
@@ -47,9 +36,6 @@ class SceneMaker {
     return prims;
   }
   Ray ray(double half) { return {point(half), direction()}; }
-
- private:
-  std::mt19937_64 rng_;
 };
 
 struct Found {

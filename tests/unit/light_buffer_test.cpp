@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include "accel/bvh.h"
 #include "accel/light_buffer.h"
 #include "geometry/primitive.h"
+#include "random_geometry.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "scene/xml_loader.h"
@@ -21,18 +21,9 @@ namespace {
 
 constexpr double kTol = 1e-3;  // the shadow tolerance kept from both ends of a segment
 
-class Maker {
+class Maker : public test::RandomGeometry {
  public:
-  explicit Maker(uint64_t seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-  Vec3 point(double half) { return {uniform(-half, half), uniform(-half, half), uniform(-half, half)}; }
-  Vec3 direction() {
-    std::normal_distribution<double> g;
-    Vec3 d;
-    do d = {g(rng_), g(rng_), g(rng_)};
-    while (length(d) < 1e-6);
-    return normalize(d);
-  }
+  using RandomGeometry::RandomGeometry;
 
   // `n` spheres in [-half, half]^3: every seventh see-through, every eleventh no_shadow,
   // and a floor plane.
@@ -52,9 +43,6 @@ class Maker {
     prims.push_back(floor);
     return prims;
   }
-
- private:
-  std::mt19937_64 rng_;
 };
 
 struct Answer {

@@ -7,7 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
+#include "random_geometry.h"
+
 #include <vector>
 
 namespace pvrt {
@@ -15,15 +16,9 @@ namespace {
 
 class Lanes : public ::testing::Test {
  protected:
-  std::mt19937_64 rng{2026};
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-  Vec3 direction() {
-    std::normal_distribution<double> g;
-    Vec3 d;
-    do d = {g(rng), g(rng), g(rng)};
-    while (length(d) < 1e-6);
-    return normalize(d);
-  }
+  test::RandomGeometry random{2026};
+  double uniform(double lo, double hi) { return random.uniform(lo, hi); }
+  Vec3 direction() { return random.direction(); }
   // Checks every ray of `rays` (any count up to kMaxPacket) against `check`.
   template <class Four, class One>
   void expectSameAnswers(const std::vector<Ray>& rays, const std::vector<double>& tMax, double tMin, Four&& four,

@@ -6,19 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "accel/slabs.h"
+#include "random_geometry.h"
 
 namespace pvrt {
 namespace {
 
-class SlabCases {
+class SlabCases : public test::RandomGeometry {
  public:
-  explicit SlabCases(uint64_t seed) : rng_(seed) {}
+  using RandomGeometry::RandomGeometry;
 
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
-  int pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(rng_); }
   // A magnitude between 10^-3 and 10^8, with either sign.
   double scaled() { return (pick(2) ? 1 : -1) * std::pow(10.0, uniform(-3, 8)); }
 
@@ -52,9 +50,6 @@ class SlabCases {
     const double len = length(d);
     return len > 0 && std::isfinite(len) ? d / len : Vec3{0, 0, 1};
   }
-
- private:
-  std::mt19937_64 rng_;
 };
 
 // A point of child c's box (as the node stores it): a corner, a point on an edge or a face,
