@@ -374,6 +374,8 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
       it.plane = *plane;
       it.kind = LeafItem::Kind::Plane;
     }
+    it.material = p.material;
+    it.object = p.object;
     it.unit = p.unit;
     it.noShadow = p.noShadow;
     it.opaque = p.opaque;
@@ -504,11 +506,16 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, doubl
   return transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 
-std::vector<Bounds> Bvh::boundedBoxes() const {
-  std::vector<Bounds> boxes;
-  boxes.reserve(boundedCount_);
-  for (uint32_t i = 0; i < boundedCount_; ++i) boxes.push_back(prims_[i].bounds());
-  return boxes;
+std::vector<LightBuffer::Occluder> Bvh::occluders() const {
+  std::vector<LightBuffer::Occluder> out(boundedCount_);
+  for (uint32_t i = 0; i < boundedCount_; ++i) {
+    out[i].box = prims_[i].bounds();
+    if (items_[i].kind == LeafItem::Kind::Sphere) {
+      out[i].center = items_[i].sphere.center;
+      out[i].radius = std::fabs(items_[i].sphere.radius);
+    }
+  }
+  return out;
 }
 
 std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,

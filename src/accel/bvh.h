@@ -73,6 +73,24 @@ class Bvh {
   const BvhStats& stats() const { return stats_; }
   const std::vector<BvhNode>& nodes() const { return nodes_; }
 
+  // What shading needs of primitive i (an index into primitives()), read from the compact
+  // leaf records where they have it, so that a hit on one of a million spheres does not
+  // also fetch its ~400-byte Primitive: the same answers as the Primitive's.
+  uint32_t material(uint32_t i) const { return items_[i].material; }
+  uint32_t object(uint32_t i) const { return items_[i].object; }
+  std::optional<ShapeHit> intersect(uint32_t i, const Ray& ray, double tMin, double tMax) const {
+    return intersectItem(i, ray, tMin, tMax);
+  }
+  SurfacePoint surfacePoint(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
+    const LeafItem& it = items_[i];
+    return it.kind == LeafItem::Kind::Sphere ? sphereSurfacePoint(it.sphere, ray.at(hit.t))
+                                              : prims_[i].surfacePoint(ray, hit);
+  }
+  Vec3 normal(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
+    const LeafItem& it = items_[i];
+    return it.kind == LeafItem::Kind::Sphere ? sphereNormal(it.sphere, ray.at(hit.t)) : prims_[i].normal(ray, hit);
+  }
+
   // Nearest hit in (tMin, tMax). `tests` is increased by the number of primitive
   // intersection tests performed; `skipNoShadow` ignores no_shadow objects.
   std::optional<ClosestHit> closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
@@ -89,8 +107,9 @@ class Bvh {
   // radians of the light's ray along -ray.dir, and no farther than `reach` from the light.
   Occlusion occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
                              uint64_t& tests, uint32_t& blocker) const;
-  // The boxes of the bounded primitives, in the order of primitives(), for light buffers.
-  std::vector<Bounds> boundedBoxes() const;
+  // The bounded primitives as light buffers see them, in the order of primitives(): their
+  // boxes, and the balls of untransformed spheres.
+  std::vector<LightBuffer::Occluder> occluders() const;
 
   // closest() for each of `count` (<= kMaxPacket) unit-direction rays that all start at
   // the same point. Gives for every ray the same answer as closest() would.
@@ -116,14 +135,16 @@ class Bvh {
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
-  // What the leaves need of each primitive, 40 bytes apiece beside the ~400 of a
-  // Primitive, so that traversal of a big scene streams through little memory.
+  // What the leaves and shading need of each primitive, 48 bytes apiece beside the ~400 of
+  // a Primitive, so that traversal of a big scene streams through little memory.
   struct LeafItem {
     enum class Kind : uint8_t { Sphere, Plane, Other };  // untransformed spheres and planes are tested from here
     union {
       SphereShape sphere;  // Kind::Sphere
       PlaneShape plane;    // Kind::Plane
     };
+    uint32_t material = 0;
+    uint32_t object = 0;
     float unit = 1;
     Kind kind = Kind::Other;
     bool noShadow = false;

@@ -97,10 +97,11 @@ Footprint footprint(const RelativeBox& box, int face, int res) {
 // primitives, in radians; a face spans 2 in u), at most 256. Finer cells list fewer
 // primitives a segment misses but list each primitive in more cells; on 10^6 spheres 256
 // renders fastest (of 64 to 1024), and on 10^2 spheres two cells per size (of 1 to 8).
-int resolutionFor(const std::vector<Bounds>& bounds, const Vec3& light) {
+int resolutionFor(const std::vector<LightBuffer::Occluder>& occluders, const Vec3& light) {
   std::vector<float> size;
-  size.reserve(bounds.size());
-  for (const Bounds& b : bounds) {
+  size.reserve(occluders.size());
+  for (const LightBuffer::Occluder& o : occluders) {
+    const Bounds& b = o.box;
     const double d = length(b.centroid() - light);
     if (d > 0 && std::isfinite(d)) size.push_back(float(length(b.extent()) / d));
   }
@@ -111,17 +112,98 @@ int resolutionFor(const std::vector<Bounds>& bounds, const Vec3& light) {
   return int(std::clamp(std::ceil(4 / median), 8.0, 256.0));
 }
 
+
+// The angle between two unit vectors, accurate for small angles too (acos of the dot
+// product is not).
+double angleBetween(const Vec3& x, const Vec3& y) { return 2 * std::atan2(length(x - y), length(x + y)); }
+
+// The directions from the light that may meet a ball: a cone about the ball's direction,
+// half-angle asin(radius / distance), widened like the footprints by the margin and the
+// rounding (the ball's own hit test is exact to far less than 1e-9 radians). None when the
+// ball is missing or holds the light: the box's footprint alone decides.
+struct Cone {
+  Vec3 axis;                   // unit
+  double sinHalf = 0, cosHalf = 0;  // of half the half-angle
+  bool any = false;
+};
+
+Cone coneOf(const LightBuffer::Occluder& o, const Vec3& light) {
+  Cone cone;
+  const Vec3 c = o.center - light;
+  const double d = length(c);
+  if (!(o.radius < d) || !std::isfinite(d)) return cone;
+  const double half = 0.5 * (std::asin(o.radius / d) + 2 * LightBuffer::kMargin + 1e-9);
+  cone = {c / d, std::sin(half), std::cos(half), true};
+  return cone;
+}
+
+// Each cell's centre direction in face coordinates, (1, u, v) / |(1, u, v)|, and its
+// angular radius (the largest angle to a corner: the directions within an angle of the
+// centre form a convex region of the face, so holding the corners it holds the cell). The
+// same for every face, so kept for one.
+class CellCones {
+ public:
+  explicit CellCones(int res) : res_(res), cells_(size_t(res) * res) {
+    const auto unit = [](double u, double v) { return normalize(Vec3{1, u, v}); };
+    for (int j = 0; j < res; ++j)
+      for (int i = 0; i < res; ++i) {
+        const double u0 = 2.0 * i / res - 1, u1 = 2.0 * (i + 1) / res - 1;
+        const double v0 = 2.0 * j / res - 1, v1 = 2.0 * (j + 1) / res - 1;
+        const Vec3 centre = unit(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        double radius = 0;
+        for (double u : {u0, u1})
+          for (double v : {v0, v1}) radius = std::max(radius, angleBetween(centre, unit(u, v)));
+        radius += 1e-9;  // the lookup's rounding of a direction on an edge
+        cells_[size_t(j) * res + i] = {centre, std::sin(radius / 2), std::cos(radius / 2)};
+      }
+  }
+  // Whether the cone may meet cell (i, j) of `face`. Two cones meet when the angle between
+  // their axes is at most the sum of their half-angles, i.e. when the chord between the
+  // axes is at most 2 sin of half that sum (a well-conditioned test, unlike a dot product).
+  bool meets(const Cone& cone, int face, int i, int j) const {
+    const Cell& cell = cells_[size_t(j) * res_ + i];
+    const int a = face / 2, b = (a + 1) % 3, c = (a + 2) % 3;
+    const Vec3 axis{face % 2 ? -cone.axis[a] : cone.axis[a], cone.axis[b], cone.axis[c]};
+    const double cosSum = cell.cosHalf * cone.cosHalf - cell.sinHalf * cone.sinHalf;
+    if (cosSum <= 0) return true;  // the half-angles add up to a half-turn or more
+    const double sinSum = cell.sinHalf * cone.cosHalf + cell.cosHalf * cone.sinHalf;
+    const Vec3 chord = axis - cell.centre;
+    return dot(chord, chord) <= 4 * sinSum * sinSum;
+  }
+
+ private:
+  struct Cell {
+    Vec3 centre;
+    double sinHalf, cosHalf;  // of half the angular radius
+  };
+  int res_;
+  std::vector<Cell> cells_;
+};
+
+// Calls f(cell index) for each cell where a primitive may be seen: within its box's
+// footprint on a face and, if it has one, its ball's cone.
+template <class F>
+void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& cones, int res, F&& visit) {
+  for (int face = 0; face < 6; ++face) {
+    if (!f[face].any) continue;
+    for (int j = f[face].j0; j <= f[face].j1; ++j)
+      for (int i = f[face].i0; i <= f[face].i1; ++i)
+        if (!cone.any || cones.meets(cone, face, i, j)) visit((face * res + j) * res + i);
+  }
+}
+
 }  // namespace
 
-LightBuffer::LightBuffer(const Vec3& light, const std::vector<Bounds>& bounds)
-    : light_(light), res_(resolutionFor(bounds, light)) {
+LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders)
+    : light_(light), res_(resolutionFor(occluders, light)) {
   const size_t cells = 6 * size_t(res_) * res_;
+  const CellCones cones(res_);
   std::vector<uint32_t> count(cells + 1, 0);
   size_t total = 0;
-  std::vector<uint8_t> listed(bounds.size(), 0);  // 1 when listed in cells, 2 when everywhere
-  for (uint32_t i = 0; i < bounds.size(); ++i) {
-    if (bounds[i].empty()) continue;
-    const RelativeBox box(bounds[i], light);
+  std::vector<uint8_t> listed(occluders.size(), 0);  // 1 when listed in cells, 2 when everywhere
+  for (uint32_t i = 0; i < occluders.size(); ++i) {
+    if (occluders[i].box.empty()) continue;
+    const RelativeBox box(occluders[i].box, light);
     Footprint f[6];
     int cellsSeen = 0;
     for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res_)).cells();
@@ -131,14 +213,12 @@ LightBuffer::LightBuffer(const Vec3& light, const std::vector<Bounds>& bounds)
       continue;
     }
     listed[i] = 1;
-    total += size_t(cellsSeen);
-    for (int face = 0; face < 6; ++face) {
-      if (!f[face].any) continue;
-      for (int j = f[face].j0; j <= f[face].j1; ++j)
-        for (int k = f[face].i0; k <= f[face].i1; ++k) ++count[cellIndex(face, k, j) + 1];
-    }
+    forEachCell(f, coneOf(occluders[i], light), cones, res_, [&](int c) {
+      ++count[size_t(c) + 1];
+      ++total;
+    });
   }
-  if (everywhere_.size() > kMaxEverywhere || total > kEntriesPerPrimitive * bounds.size() + 65536) {
+  if (everywhere_.size() > kMaxEverywhere || total > kEntriesPerPrimitive * occluders.size() + 65536) {
     // Too many primitives too big for cells: the BVH answers this light's segments better.
     everywhere_.clear();
     return;
@@ -146,16 +226,13 @@ LightBuffer::LightBuffer(const Vec3& light, const std::vector<Bounds>& bounds)
   for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
   offsets_ = count;
   entries_.resize(offsets_[cells]);
-  for (uint32_t i = 0; i < bounds.size(); ++i) {
+  for (uint32_t i = 0; i < occluders.size(); ++i) {
     if (listed[i] != 1) continue;
-    const RelativeBox box(bounds[i], light);
+    const RelativeBox box(occluders[i].box, light);
     const Entry e{roundDown(box.distance()), i};
-    for (int face = 0; face < 6; ++face) {
-      const Footprint f = footprint(box, face, res_);
-      if (!f.any) continue;
-      for (int j = f.j0; j <= f.j1; ++j)
-        for (int k = f.i0; k <= f.i1; ++k) entries_[count[cellIndex(face, k, j)]++] = e;
-    }
+    Footprint f[6];
+    for (int face = 0; face < 6; ++face) f[face] = footprint(box, face, res_);
+    forEachCell(f, coneOf(occluders[i], light), cones, res_, [&](int c) { entries_[count[size_t(c)]++] = e; });
   }
   for (size_t c = 0; c < cells; ++c) {
     std::sort(entries_.begin() + offsets_[c], entries_.begin() + offsets_[c + 1], [](const Entry& x, const Entry& y) {
@@ -164,15 +241,20 @@ LightBuffer::LightBuffer(const Vec3& light, const std::vector<Bounds>& bounds)
   }
 }
 
-bool LightBuffer::cell(const Vec3& d, std::span<const Entry>& out) const {
+int LightBuffer::cellIndexOf(const Vec3& d) const {
   const double x = std::fabs(d.x), y = std::fabs(d.y), z = std::fabs(d.z);
   const int a = z > std::max(x, y) ? 2 : y > x ? 1 : 0;
   const double w = std::fabs(d[a]);
-  if (offsets_.empty() || !(w > 0) || !std::isfinite(w)) return false;
+  if (offsets_.empty() || !(w > 0) || !std::isfinite(w)) return -1;
   const int b = (a + 1) % 3, c = (a + 2) % 3;
   const int face = 2 * a + (d[a] < 0 ? 1 : 0);
-  const int index = cellIndex(face, cellOf(d[b] / w, res_), cellOf(d[c] / w, res_));
-  out = {entries_.data() + offsets_[index], offsets_[index + 1] - offsets_[index]};
+  return cellIndex(face, cellOf(d[b] / w, res_), cellOf(d[c] / w, res_));
+}
+
+bool LightBuffer::cell(const Vec3& d, std::span<const Entry>& out) const {
+  const int index = cellIndexOf(d);
+  if (index < 0) return false;
+  out = {entries_.data() + offsets_[size_t(index)], offsets_[size_t(index) + 1] - offsets_[size_t(index)]};
   return true;
 }
 

@@ -12,6 +12,7 @@
 // still finds it. The answers are therefore exactly the BVH's.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -32,14 +33,22 @@ class LightBuffer {
   static constexpr size_t kMaxEverywhere = 32;
   static constexpr size_t kEntriesPerPrimitive = 8;
 
+  // What the buffer knows of a primitive: its box and, where it has one, a ball holding
+  // it (a sphere's own), whose cone of directions is tighter than the box's footprint.
+  struct Occluder {
+    Bounds box;
+    Vec3 center{};
+    double radius = INFINITY;  // no ball
+  };
+
   struct Entry {
     float near;          // the distance from the light to the primitive's box, rounded down
     uint32_t primitive;  // index into the BVH's primitives
   };
 
   LightBuffer() = default;
-  // `bounds[i]` is primitive i's box, for the first bounds.size() (bounded) primitives.
-  LightBuffer(const Vec3& light, const std::vector<Bounds>& bounds);
+  // `occluders[i]` is primitive i, for the first occluders.size() (bounded) primitives.
+  LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders);
 
   // Whether the buffer was built (see kMaxEverywhere).
   bool valid() const { return !offsets_.empty(); }
@@ -47,6 +56,17 @@ class LightBuffer {
   // The primitives that may lie along direction `fromLight` (any length), nearest first;
   // false for a zero or non-finite direction, which has no cell.
   bool cell(const Vec3& fromLight, std::span<const Entry>& out) const;
+  // Hints that cell(fromLight) will soon be read: prefetchCell starts fetching where its
+  // list is, prefetchList (which waits for that) the list's first entries. Between the
+  // two, other work (other lights' cells) overlaps the wait.
+  void prefetchCell(const Vec3& fromLight) const {
+    const int index = cellIndexOf(fromLight);
+    if (index >= 0) __builtin_prefetch(&offsets_[size_t(index)]);
+  }
+  void prefetchList(const Vec3& fromLight) const {
+    const int index = cellIndexOf(fromLight);
+    if (index >= 0) __builtin_prefetch(&entries_[offsets_[size_t(index)]]);
+  }
   // The primitives whose box holds the light or covers much of its view: tested for every
   // segment.
   std::span<const uint32_t> everywhere() const { return everywhere_; }
@@ -59,6 +79,8 @@ class LightBuffer {
 
  private:
   int cellIndex(int face, int i, int j) const { return (face * res_ + j) * res_ + i; }
+  // The cell of a direction; -1 for a zero or non-finite one, or when there are no cells.
+  int cellIndexOf(const Vec3& d) const;
 
   Vec3 light_;
   int res_ = 1;                    // cells along each side of a face

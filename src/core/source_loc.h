@@ -17,6 +17,7 @@ class FileName {
   FileName(const char* name) : FileName(std::string_view(name)) {}         // NOLINT
 
   const std::string& str() const;
+  bool operator==(const FileName&) const = default;  // names are interned: one pointer each
 
  private:
   const std::string* name_ = nullptr;
@@ -26,6 +27,7 @@ struct SourceLoc {
   FileName file;
   int line = 0;
   std::string str() const { return file.str() + ":" + std::to_string(line); }
+  bool operator==(const SourceLoc&) const = default;
 };
 
 }  // namespace pvrt

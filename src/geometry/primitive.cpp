@@ -199,13 +199,7 @@ struct Intersector {
 struct Reproject {
   const Vec3& p;
   const ShapeHit& hit;
-  SurfacePoint operator()(const SphereShape& s) const {
-    const Vec3 v = p - s.center;
-    const double len = length(v);
-    if (!(len > 0)) return {p, vabs(p) * errorGamma(8) + Vec3(s.radius * errorGamma(8))};
-    const Vec3 q = s.center + v * (s.radius / len);
-    return {q, (vabs(q - s.center) + vabs(q)) * errorGamma(6)};
-  }
+  SurfacePoint operator()(const SphereShape& s) const { return sphereSurfacePoint(s, p); }
   SurfacePoint operator()(const PlaneShape& s) const { return flat(s.normal, s.normal * s.distance); }
   SurfacePoint operator()(const BoxShape& b) const {
     // The face's own coordinate is exact; the other two are where the ray put them.
@@ -257,7 +251,7 @@ struct Reproject {
 struct Normal {
   const Vec3& p;
   const ShapeHit& hit;
-  Vec3 operator()(const SphereShape& s) const { return (p - s.center) / s.radius; }
+  Vec3 operator()(const SphereShape& s) const { return sphereNormal(s, p); }
   Vec3 operator()(const PlaneShape& s) const { return s.normal; }
   Vec3 operator()(const BoxShape&) const {
     Vec3 n;

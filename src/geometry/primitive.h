@@ -121,6 +121,19 @@ inline std::optional<ShapeHit> intersectWorldSphere(const SphereShape& s, float 
   return detail::hitUnitSphere(s.center, s.radius * s.radius, ray.origin, ray.dir, tMin, tMax, unit);
 }
 
+// The hit point p of an untransformed sphere moved onto its surface, with the bound on its
+// error (pbrt-v4's), and the sphere's normal there: Primitive's for spheres, inline for
+// callers that keep spheres in a compact array of their own.
+inline SurfacePoint sphereSurfacePoint(const SphereShape& s, const Vec3& p) {
+  const Vec3 v = p - s.center;
+  const double len = length(v);
+  if (!(len > 0)) return {p, vabs(p) * errorGamma(8) + Vec3(s.radius * errorGamma(8))};
+  const Vec3 q = s.center + v * (s.radius / len);
+  return {q, (vabs(q - s.center) + vabs(q)) * errorGamma(6)};
+}
+// (P - C) / r, unit but for rounding, as POV-Ray leaves it.
+inline Vec3 sphereNormal(const SphereShape& s, const Vec3& p) { return (p - s.center) / s.radius; }
+
 // Triangles with their face normal normalize((p1-p2) x (p3-p2)) precomputed; a zero-area
 // triangle gets a zero normal and is never hit.
 TriangleShape makeTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3);

@@ -136,11 +136,13 @@ EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
     if (l.spot || (l.fadePower > 0 && l.fadeDistance != 0)) e |= kLightShaping;
   }
   if (shadowCaster && !desc.objects.empty()) e |= kShadows;
-  for (const Material& m : s.materials) {
-    if (m.reflective) e |= kReflection;
+  for (size_t i = 0; i < s.materials.size(); ++i) {
+    const Material& m = s.materials[i];
+    const Surface& surface = s.materials.surface(m);
+    if (surface.reflective) e |= kReflection;
     if (!m.opaque) e |= kTransmission;
-    if (m.highlights && shadowCaster) e |= kHighlights;
-    if (m.pigment.checker) e |= kTextures;
+    if (surface.highlights && shadowCaster) e |= kHighlights;
+    if (m.checker >= 0) e |= kTextures;
   }
   return e;
 }
@@ -160,7 +162,7 @@ Scene buildScene(const SceneDesc& desc) {
   for (size_t i = 0; i < desc.objects.size(); ++i) {
     const ObjectDesc& o = desc.objects[i];
     const Affine xf = o.transforms.combined();
-    s.materials.push_back(buildMaterial(o.material, xf));
+    s.materials.add(o.material, xf);
     std::visit(PrimitiveBuilder(prims, uint32_t(i), o.noShadow, xf), o.shape);
   }
   for (const Primitive& p : prims)
@@ -185,19 +187,22 @@ void buildLightBuffers(Scene& s) {
   for (size_t j = 0; j < s.lights.size(); ++j)
     if (!s.lights[j].area && !s.lights[j].shadowless) which.push_back(j);
   if (which.empty() || s.bvh.primitives().empty()) return;
-  const std::vector<Bounds> boxes = s.bvh.boundedBoxes();
+  const std::vector<LightBuffer::Occluder> occluders = s.bvh.occluders();
   // The buffers are independent, and each the same whatever the order: one light at a
   // time on each of up to one thread a core.
   std::atomic<size_t> next{0};
   const auto work = [&] {
     for (size_t k; (k = next++) < which.size();)
-      s.lightBuffers[which[k]] = LightBuffer(s.lights[which[k]].location, boxes);
+      s.lightBuffers[which[k]] = LightBuffer(s.lights[which[k]].location, occluders);
   };
   const size_t threads = std::min<size_t>(which.size(), std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::future<void>> tasks;
   for (size_t t = 1; t < threads; ++t) tasks.push_back(std::async(std::launch::async, work));
   work();
   for (auto& t : tasks) t.get();
+  size_t bytes = 0;
+  for (const LightBuffer& b : s.lightBuffers) bytes += b.bytes();
+  s.prefetchLightBuffers = bytes > (size_t(16) << 20);
   s.lightBufferSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

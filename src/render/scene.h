@@ -39,13 +39,16 @@ struct Scene {
   Camera camera;
   GlobalSettings globals;
   Color background;
-  std::vector<Material> materials;  // one per object, indexed by Primitive::material
+  MaterialTable materials;  // one per object, indexed by Primitive::material
   std::vector<Light> lights;
   Bvh bvh;
   // Per light, its light buffer: for the point lights that cast shadows, when the scene has
   // shadows; an empty one (resolution() 1, no cells) otherwise.
   std::vector<LightBuffer> lightBuffers;
   double lightBufferSeconds = 0;
+  // Whether the buffers are too big for the caches, so that shading should start fetching
+  // a point's cells for all lights at once (it costs more than it saves on small ones).
+  bool prefetchLightBuffers = false;
   InteriorList cameraInteriors;  // objects whose inside contains the camera
   EffectSet effects = 0;         // kernel effects (supersampling is added per render)
   RayTolerances tol;             // minimum depths and maximum distance, in the scene's unit

@@ -49,8 +49,7 @@ class Tracer {
     const auto found = scene_.bvh.closest(ray, tMin, scene_.tol.maxDistance, stats_.intersectionTests);
     if (!found) return scene_.background;
     ++stats_.shadingOps;
-    const Primitive& prim = scene_.bvh.primitives()[found->primitive];
-    return shade(ray, prim, found->hit, level + 1, weight, inside);
+    return shade(ray, found->primitive, found->hit, level + 1, weight, inside);
   }
 
   // The primary rays of one pixel, all from the camera: their closest hits and the
@@ -71,9 +70,9 @@ class Tracer {
         continue;
       }
       // Exactly what shade() and lightContribution() compute for this hit, done once.
-      const Primitive& prim = scene_.bvh.primitives()[hits[k]->primitive];
-      points_[k] = prim.surfacePoint(rays[k], hits[k]->hit);
-      normals_[k] = prim.normal(rays[k], hits[k]->hit);
+      const uint32_t prim = hits[k]->primitive;
+      points_[k] = scene_.bvh.surfacePoint(prim, rays[k], hits[k]->hit);
+      normals_[k] = scene_.bvh.normal(prim, rays[k], hits[k]->hit);
       if (dot(normals_[k], rays[k].dir) > 0) normals_[k] = -normals_[k];
       // Every segment toward a light that lightContribution traces leaves on the side the
       // normal points to (it asks dot(n, l) >= kPovEpsilon first), so all of this hit's
@@ -110,7 +109,7 @@ class Tracer {
       }
       ++stats_.shadingOps;
       knownRay_ = k;
-      out[k] = shadeAt(rays[k], scene_.bvh.primitives()[hits[k]->primitive], hits[k]->hit, points_[k], normals_[k],
+      out[k] = shadeAt(rays[k], hits[k]->primitive, hits[k]->hit, points_[k], normals_[k],
                        1, 1.0, inside);
     }
   }
@@ -121,23 +120,29 @@ class Tracer {
 
  private:
   // `level` is the level this hit runs at: 1 for the primary ray's hit.
-  Color shade(const Ray& ray, const Primitive& prim, const ShapeHit& hit, int level, double weight,
+  Color shade(const Ray& ray, uint32_t prim, const ShapeHit& hit, int level, double weight,
               const InteriorList& inside) {
-    const SurfacePoint sp = prim.surfacePoint(ray, hit);
-    Vec3 n = prim.normal(ray, hit);
+    const SurfacePoint sp = scene_.bvh.surfacePoint(prim, ray, hit);
+    Vec3 n = scene_.bvh.normal(prim, ray, hit);
     if (dot(n, ray.dir) > 0) n = -n;  // every surface is shaded on the side the ray sees
     return shadeAt(ray, prim, hit, sp, n, level, weight, inside);
   }
 
   // shade() once the hit point sp and the ray-facing normal n are known.
-  Color shadeAt(const Ray& ray, const Primitive& prim, const ShapeHit& hit, const SurfacePoint& sp, const Vec3& n,
+  // `prim` is an index into the BVH's primitives.
+  Color shadeAt(const Ray& ray, uint32_t prim, const ShapeHit& hit, const SurfacePoint& sp, const Vec3& n,
                 int level, double weight, const InteriorList& inside) {
-    const Material& m = scene_.materials[prim.material];
-    const FinishDesc& f = m.finish;
     const Vec3& p = sp.p;
+    if constexpr ((E & kShadows) != 0) {
+      if (scene_.prefetchLightBuffers) prefetchShadowCells(p);
+    }
+    const uint32_t object = scene_.bvh.object(prim);
+    const Material& m = scene_.materials[scene_.bvh.material(prim)];
+    const Surface& s = scene_.materials.surface(m);
+    const FinishDesc& f = s.finish;
 
-    FilterColor pig = m.pigment.color;
-    if constexpr ((E & kTextures) != 0) pig = m.pigment.at(p);
+    FilterColor pig = m.color;
+    if constexpr ((E & kTextures) != 0) pig = scene_.materials.pigmentAt(m, p);
     const double alpha = 1.0 - pig.filter - pig.transmit;
 
     Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
@@ -146,21 +151,21 @@ class Tracer {
     const int known = std::exchange(knownRay_, -1);
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
-      result += lightContribution(scene_.lights[j], m, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
+      result += lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
     Color rho;
     if constexpr ((E & kReflection) != 0) {
-      if (m.reflective) rho = shading::reflectivity(f.reflection, cosI, fresnelIor(prim.object, inside), pig.rgb);
+      if (s.reflective) rho = shading::reflectivity(f.reflection, cosI, fresnelIor(object, inside), pig.rgb);
     }
     if constexpr ((E & kTransmission) != 0) {
       if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
-        result += transmit(ray, hit.t, prim.object, m, pig, rho, sp, n, level, weight, inside, totalInternal);
+        result += transmit(ray, hit.t, object, s, pig, rho, sp, n, level, weight, inside, totalInternal);
     }
     if constexpr ((E & kReflection) != 0) {
-      if (m.reflective && !totalInternal) {
+      if (s.reflective && !totalInternal) {
         const double w = weight * (f.reflection.fresnel ? rho.maxComponent()
                                                           : std::max(f.reflection.max.maxComponent(),
                                                                      f.reflection.min.maxComponent()));
@@ -178,9 +183,17 @@ class Tracer {
     return result;
   }
 
+  // Starts fetching the light-buffer cells that the shadow segments from p will read, all
+  // lights' at once so that their cache misses overlap instead of coming one by one.
+  void prefetchShadowCells(const Vec3& p) const {
+    const size_t lights = std::min(scene_.lights.size(), scene_.lightBuffers.size());
+    for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchCell(p - scene_.lights[j].location);
+    for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(p - scene_.lights[j].location);
+  }
+
   static Vec3 mirror(const Vec3& d, const Vec3& n) { return normalize(d - n * (2.0 * dot(d, n))); }
 
-  double iorOf(uint32_t object) const { return scene_.materials[object].interior.ior; }
+  double iorOf(uint32_t object) const { return scene_.materials.surface(scene_.materials[object]).interior.ior; }
 
   // n_to / n_from at the surface of `object`, for the fresnel reflectivity. POV-Ray's
   // ComputeRelativeIOR: when leaving an object that is nested in another it divides the
@@ -206,11 +219,11 @@ class Tracer {
 
   // Light leaving an object through this surface has crossed its interior for `depth`;
   // POV-Ray fades only that transmitted share, not the surface's own shading.
-  Color transmit(const Ray& ray, double depth, uint32_t object, const Material& m, const FilterColor& pig,
+  Color transmit(const Ray& ray, double depth, uint32_t object, const Surface& s, const FilterColor& pig,
                  const Color& rho, const SurfacePoint& sp, const Vec3& n, int level, double weight,
                  const InteriorList& inside, bool& totalInternal) {
     Color filter = pig.rgb * pig.filter + Color(pig.transmit);
-    if (m.finish.conserveEnergy)
+    if (s.finish.conserveEnergy)
       filter *= Color(std::min(1.0, 1.0 - rho.r), std::min(1.0, 1.0 - rho.g), std::min(1.0, 1.0 - rho.b));
     const double tau = std::min(1.0, std::fabs(shading::grey(filter)));
     if (tau <= scene_.globals.adcBailout) return {};
@@ -222,7 +235,7 @@ class Tracer {
     if (at >= 0) next.remove(at); else next.push(object);
     Color fade(1.0);
     if (at >= 0) {
-      const InteriorDesc& in = m.interior;
+      const InteriorDesc& in = s.interior;
       if (std::fabs(in.fadeDistance) > kPovEpsilon) fade = shading::interiorFade(in, depth);
     }
 
@@ -279,7 +292,7 @@ class Tracer {
     for (int i = 0; i < m; ++i) pl.occlusion[segmentRay_[i]] = uint8_t(occlusion_[i]);
   }
 
-  Color lightContribution(const Light& light, const Material& m, const FilterColor& pig, double alpha,
+  Color lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
                           const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
                           const KnownLight* known) {
     const Vec3& p = sp.p;
@@ -311,17 +324,17 @@ class Tracer {
         if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
       }
     }
-    const FinishDesc& f = m.finish;
+    const FinishDesc& f = s.finish;
     Color c;
     if (f.diffuse > 0) {
       const double k = f.brilliance == 1 ? nl : std::pow(nl, f.brilliance);
       c = pig.rgb * intensity * (f.diffuse * k * alpha);
     }
     if constexpr ((E & kHighlights) != 0) {
-      if (m.highlights && !light.shadowless) {
+      if (s.highlights && !light.shadowless) {
         double h = 0;
         if (f.phong > 0) h += shading::phong(f, ray.dir, n, l);
-        if (f.specular > 0) h += shading::specular(f, m.specularExponent, ray.dir, n, l);
+        if (f.specular > 0) h += shading::specular(f, s.specularExponent, ray.dir, n, l);
         if (h > 0) {
           Color hc = intensity * h;
           if (f.metallic != 0) hc *= shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pig.rgb);
@@ -374,7 +387,7 @@ class Tracer {
     uint32_t& cached = shadowCache_[cacheSlot_];
     if (cached != kNoCache) {
       ++stats_.intersectionTests;
-      if (scene_.bvh.primitives()[cached].intersect(segment, tol, dist - tol)) return {};
+      if (scene_.bvh.intersect(cached, segment, tol, dist - tol)) return {};
     }
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
@@ -403,24 +416,24 @@ class Tracer {
       if constexpr ((E & kTransmission) == 0) {
         return {};
       } else {
-        const Primitive& prim = scene_.bvh.primitives()[found->primitive];
-        const Material& m = scene_.materials[prim.material];
+        const uint32_t object = scene_.bvh.object(found->primitive);
+        const Material& m = scene_.materials[scene_.bvh.material(found->primitive)];
         if (m.opaque) return {};
         const double t = found->hit.t;
         origin = origin + dir * t;
-        FilterColor pig = m.pigment.color;
-        if constexpr ((E & kTextures) != 0) pig = m.pigment.at(origin);
+        FilterColor pig = m.color;
+        if constexpr ((E & kTextures) != 0) pig = scene_.materials.pigmentAt(m, origin);
         if (std::fabs(pig.filter) + std::fabs(pig.transmit) < scene_.globals.adcBailout) return {};
         k *= pig.rgb * pig.filter + Color(pig.transmit);
         // Leaving a fading interior: the light crossed it for t (POV-Ray fades shadow rays
         // only when fade_power > 0).
-        const int at = inside.find(prim.object);
+        const int at = inside.find(object);
         if (at >= 0) {
-          const InteriorDesc& in = m.interior;
+          const InteriorDesc& in = scene_.materials.surface(m).interior;
           if (in.fadePower > 0 && std::fabs(in.fadeDistance) > kPovEpsilon) k *= shading::interiorFade(in, t);
           inside.remove(at);
         } else {
-          inside.push(prim.object);
+          inside.push(object);
         }
         dist -= t;
       }

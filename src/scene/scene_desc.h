@@ -113,6 +113,7 @@ struct ReflectionDesc {
   double exponent = 1;
   double metallic = 0;
   bool isZero() const { return min.isBlack() && max.isBlack(); }
+  bool operator==(const ReflectionDesc&) const = default;
 };
 
 struct FinishDesc {
@@ -128,6 +129,7 @@ struct FinishDesc {
   bool conserveEnergy = false;
   ReflectionDesc reflection;
   SourceLoc loc;
+  bool operator==(const FinishDesc&) const = default;
 };
 
 struct InteriorDesc {
@@ -136,6 +138,7 @@ struct InteriorDesc {
   double fadePower = 0;
   Color fadeColor{0, 0, 0};
   SourceLoc loc;
+  bool operator==(const InteriorDesc&) const = default;
 };
 
 struct MaterialDesc {

@@ -36,6 +36,36 @@ class SceneMaker : public test::RandomGeometry {
     return prims;
   }
   Ray ray(double half) { return {point(half), direction()}; }
+  // `n` primitives of every bounded shape in [-10, 10]^3, some transformed, each with its
+  // own material and object, plus a plane under everything.
+  std::vector<Primitive> mixed(uint32_t n) {
+    std::vector<Primitive> prims;
+    for (uint32_t i = 0; i < n; ++i) {
+      const Vec3 c = point(10);
+      const double r = uniform(0.1, 0.8);
+      Shape s;
+      switch (i % 7) {
+        case 0: s = SphereShape{c, r}; break;
+        case 1: s = BoxShape{c - Vec3(r), c + Vec3{r, 2 * r, r}}; break;
+        case 2: s = CylinderShape{c, c + direction() * (2 * r), r / 2, i % 2 == 0}; break;
+        case 3: s = ConeShape{c, r, c + direction() * (2 * r), r / 3, false}; break;
+        case 4: s = DiscShape{c, direction(), r * r, r * r / 4}; break;
+        case 5: s = makeTriangle(c, c + direction() * r, c + direction() * r); break;
+        default:
+          s = makeSmoothTriangle(c, direction(), c + direction() * r, direction(), c + direction() * r, direction());
+      }
+      Primitive p = make(s, i);
+      p.material = n - i;
+      if (i % 5 == 0) {  // a sphere at the origin, scaled, rotated and moved to c
+        p.shape = SphereShape{{0, 0, 0}, r};
+        p.transform = Transform::from(
+            Affine::scale({1, 0.5, 2}).then(Affine::rotate({10, 20, 30})).then(Affine::translate(c)));
+      }
+      prims.push_back(p);
+    }
+    prims.push_back(make(PlaneShape{{0, 1, 0}, -11}, n));
+    return prims;
+  }
 };
 
 struct Found {
@@ -110,33 +140,36 @@ TEST(Bvh, ClosestMatchesBruteForceForSmallScenes) {
 // A mixture of every bounded shape, some transformed, plus a plane under everything.
 TEST(Bvh, ClosestMatchesBruteForceOnMixedShapesAndAPlane) {
   SceneMaker gen(0x5eed'0003);
-  std::vector<Primitive> prims;
-  for (uint32_t i = 0; i < 600; ++i) {
-    const Vec3 c = gen.point(10);
-    const double r = gen.uniform(0.1, 0.8);
-    Shape s;
-    switch (i % 7) {
-      case 0: s = SphereShape{c, r}; break;
-      case 1: s = BoxShape{c - Vec3(r), c + Vec3{r, 2 * r, r}}; break;
-      case 2: s = CylinderShape{c, c + gen.direction() * (2 * r), r / 2, i % 2 == 0}; break;
-      case 3: s = ConeShape{c, r, c + gen.direction() * (2 * r), r / 3, false}; break;
-      case 4: s = DiscShape{c, gen.direction(), r * r, r * r / 4}; break;
-      case 5: s = makeTriangle(c, c + gen.direction() * r, c + gen.direction() * r); break;
-      default:
-        s = makeSmoothTriangle(c, gen.direction(), c + gen.direction() * r, gen.direction(),
-                               c + gen.direction() * r, gen.direction());
-    }
-    Primitive p = make(s, i);
-    if (i % 5 == 0) {  // a sphere at the origin, scaled, rotated and moved to c
-      p.shape = SphereShape{{0, 0, 0}, r};
-      p.transform = Transform::from(Affine::scale({1, 0.5, 2}).then(Affine::rotate({10, 20, 30})).then(
-          Affine::translate(c)));
-    }
-    prims.push_back(p);
-  }
-  prims.push_back(make(PlaneShape{{0, 1, 0}, -11}, 600));
+  const std::vector<Primitive> prims = gen.mixed(600);
   const int hits = compareOnRandomRays(prims, gen, 5000, 10);
   EXPECT_GT(hits, 2000);  // roughly half of the rays point down at the floor
+}
+
+// What shading asks of a hit primitive through the BVH (read from its compact leaf record
+// where it can be) is exactly what the Primitive itself answers, bit for bit.
+TEST(Bvh, ShadingQueriesMatchThePrimitives) {
+  SceneMaker gen(0x5eed'0010);
+  const Bvh bvh(gen.mixed(700));
+  const auto same = [](const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; };
+  int hits = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Ray r = gen.ray(12);
+    uint64_t tests = 0;
+    const auto found = bvh.closest(r, 1e-6, 1e7, tests);
+    if (!found) continue;
+    ++hits;
+    const uint32_t i = found->primitive;
+    const Primitive& p = bvh.primitives()[i];
+    EXPECT_EQ(bvh.material(i), p.material);
+    EXPECT_EQ(bvh.object(i), p.object);
+    const SurfacePoint a = bvh.surfacePoint(i, r, found->hit), b = p.surfacePoint(r, found->hit);
+    EXPECT_TRUE(same(a.p, b.p) && same(a.error, b.error)) << "primitive " << i;
+    EXPECT_TRUE(same(bvh.normal(i, r, found->hit), p.normal(r, found->hit))) << "primitive " << i;
+    const auto again = bvh.intersect(i, r, 1e-6, 1e7), direct = p.intersect(r, 1e-6, 1e7);
+    ASSERT_EQ(again.has_value(), direct.has_value());
+    EXPECT_EQ(again->t, direct->t);
+  }
+  EXPECT_GT(hits, 1000);
 }
 
 // Planes have no bounds: they live outside the tree and are tested on every ray. A ray

@@ -69,7 +69,7 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
 void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, Maker& gen, int segments,
                         int* blocked = nullptr) {
   const Bvh bvh(prims);
-  const LightBuffer buffer(light, bvh.boundedBoxes());
+  const LightBuffer buffer(light, bvh.occluders());
   int count = 0;
   for (int k = 0; k < segments; ++k) {
     const uint32_t i = uint32_t(gen.uniform(0, double(prims.size() - 1)));  // a sphere, not the floor
@@ -111,7 +111,7 @@ TEST(LightBuffer, APrimitiveAroundTheLightIsTestedEverywhere) {
   shell.object = 999;
   prims.push_back(shell);
   const Bvh bvh(prims);
-  const LightBuffer buffer({1.5, 2, 3}, bvh.boundedBoxes());
+  const LightBuffer buffer({1.5, 2, 3}, bvh.occluders());
   ASSERT_EQ(buffer.everywhere().size(), 1u);
   expectBufferAgrees(prims, {1.5, 2, 3}, gen, 4000);
 }
@@ -119,7 +119,8 @@ TEST(LightBuffer, APrimitiveAroundTheLightIsTestedEverywhere) {
 // A box the buffer cannot place (a NaN bound) is tested for every segment, as the BVH's
 // box test lets it through too.
 TEST(LightBuffer, ABoxWithANanBoundIsTestedEverywhere) {
-  const std::vector<Bounds> boxes{{{1, 1, 1}, {2, 2, 2}}, {{NAN, 1, 1}, {2, 2, 2}}, {{-3, -3, 5}, {-2, -2, NAN}}};
+  const std::vector<LightBuffer::Occluder> boxes{
+      {{{1, 1, 1}, {2, 2, 2}}}, {{{NAN, 1, 1}, {2, 2, 2}}}, {{{-3, -3, 5}, {-2, -2, NAN}}}};
   const LightBuffer buffer({0, 0, 0}, boxes);
   ASSERT_TRUE(buffer.valid());
   ASSERT_EQ(buffer.everywhere().size(), 2u);
@@ -144,7 +145,7 @@ TEST(LightBuffer, AgreesOnTheEdgesBetweenFaces) {
     prims.push_back(behind);
   }
   const Bvh bvh(prims);
-  const LightBuffer buffer(light, bvh.boundedBoxes());
+  const LightBuffer buffer(light, bvh.occluders());
   for (uint32_t i = 0; i < bvh.primitives().size(); ++i) {
     const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
     if (length(s.center) < 7) continue;
@@ -157,19 +158,68 @@ TEST(LightBuffer, AgreesOnTheEdgesBetweenFaces) {
   }
 }
 
+// Segments that pass just inside or just outside a sphere's silhouette as the light sees
+// it: the cells a sphere is listed in (its cone of directions, not only its box's
+// footprint) must hold every direction that meets it. Narrowing the cones by 2% fails this.
+TEST(LightBuffer, AgreesOnSegmentsThatGrazeSpheres) {
+  Maker gen(17);
+  const Vec3 light{0.3, 12, -0.2};
+  const auto prims = gen.scene(400, 10, 0.2, 1.2);
+  const Bvh bvh(prims);
+  const LightBuffer buffer(light, bvh.occluders());
+  ASSERT_TRUE(buffer.valid());
+  int blocked = 0, clear = 0;
+  for (int k = 0; k < 40000; ++k) {
+    const uint32_t i = uint32_t(gen.uniform(0, double(prims.size() - 1)));
+    const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+    const Vec3 c = s.center - light;
+    const double d = length(c);
+    if (d <= 2 * s.radius) continue;
+    // A direction from the light at angle theta from the centre's: inside the silhouette
+    // by up to 1e-3 of its angle, or outside by as much.
+    const Vec3 axis = c / d;
+    const Vec3 side = normalize(cross(axis, gen.direction()));
+    const double theta = std::asin(s.radius / d) * (1 + gen.uniform(-1e-3, 1e-3));
+    const Vec3 dir = axis * std::cos(theta) + side * std::sin(theta);
+    const Vec3 from = light + dir * (d + 2 * s.radius);  // beyond the sphere
+    const double dist = length(light - from);
+    const Ray segment{from, (light - from) / dist};
+    uint64_t tests = 0;
+    uint32_t blocker = 0;
+    const Occlusion viaTree = bvh.occlusion(segment, kTol, dist - kTol, tests, blocker);
+    const Occlusion viaBuffer =
+        bvh.occlusionToLight(buffer, segment, kTol, dist - kTol, dist * (1 + 1e-9), tests, blocker);
+    ASSERT_EQ(int(viaBuffer), int(viaTree)) << "segment " << k << " grazing sphere " << i;
+    (viaTree == Occlusion::Clear ? clear : blocked)++;
+  }
+  EXPECT_GT(blocked, 10000);
+  EXPECT_GT(clear, 1000);
+}
+
+// The cones cut the lists: fewer entries than the boxes' footprints alone give.
+TEST(LightBuffer, SpheresAreListedByTheirCones) {
+  Maker gen(19);
+  const Bvh bvh(gen.scene(2000, 10, 0.1, 0.5));
+  const Vec3 light{1, 25, 2};
+  std::vector<LightBuffer::Occluder> boxesOnly = bvh.occluders();
+  for (LightBuffer::Occluder& o : boxesOnly) o.radius = INFINITY;
+  const LightBuffer withCones(light, bvh.occluders()), withBoxes(light, boxesOnly);
+  EXPECT_LT(double(withCones.entries()), 0.95 * double(withBoxes.entries()));
+}
+
 // The buffer's lists: nearest first, and each primitive listed in the cell of the
 // direction to its centre (or tested everywhere).
 TEST(LightBuffer, ListsAreSortedAndHoldEveryPrimitive) {
   Maker gen(13);
   const auto prims = gen.scene(1000, 10, 0.1, 0.6);
   const Bvh bvh(prims);
-  const std::vector<Bounds> boxes = bvh.boundedBoxes();
+  const std::vector<LightBuffer::Occluder> occluders = bvh.occluders();
   const Vec3 light{2, 30, 1};
-  const LightBuffer buffer(light, boxes);
+  const LightBuffer buffer(light, occluders);
   EXPECT_GT(buffer.resolution(), 8);
-  for (uint32_t i = 0; i < boxes.size(); ++i) {
+  for (uint32_t i = 0; i < occluders.size(); ++i) {
     std::span<const LightBuffer::Entry> cell;
-    ASSERT_TRUE(buffer.cell(boxes[i].centroid() - light, cell));
+    ASSERT_TRUE(buffer.cell(occluders[i].box.centroid() - light, cell));
     bool found = false;
     for (size_t e = 0; e < cell.size(); ++e) {
       found |= cell[e].primitive == i;

@@ -1,0 +1,91 @@
+// The material table: one small record per object, and one Surface for every set of
+// objects whose finishes and interiors are equal, wherever they were written.
+#include <gtest/gtest.h>
+
+#include "render/material.h"
+
+namespace pvrt {
+namespace {
+
+MaterialDesc solid(const Color& c, double diffuse, double ior = 1) {
+  MaterialDesc m;
+  m.pigment.color = {c, 0, 0};
+  m.finish.diffuse = diffuse;
+  m.interior.ior = ior;
+  return m;
+}
+
+TEST(MaterialTable, EqualFinishesShareOneSurface) {
+  MaterialTable table;
+  MaterialDesc a = solid({1, 0, 0}, 0.7), b = solid({0, 1, 0}, 0.7), c = solid({0, 0, 1}, 0.5);
+  a.finish.loc = {"a.xml", 3};
+  b.finish.loc = {"b.xml", 9};  // written elsewhere, equal all the same
+  for (const MaterialDesc& m : {a, b, c, a}) table.add(m, Affine{});
+  ASSERT_EQ(table.size(), 4u);
+  EXPECT_EQ(table.surfaces().size(), 2u);
+  EXPECT_EQ(table[0].surface, table[1].surface);
+  EXPECT_EQ(table[0].surface, table[3].surface);
+  EXPECT_NE(table[0].surface, table[2].surface);
+  EXPECT_EQ(table.surface(table[2]).finish.diffuse, 0.5);
+  EXPECT_EQ(table[1].color.rgb, (Color{0, 1, 0}));
+}
+
+// Any field tells surfaces apart, not only those the table hashes.
+TEST(MaterialTable, SurfacesDifferingInOneFieldStayApart) {
+  MaterialTable table;
+  MaterialDesc base = solid({1, 1, 1}, 0.6);
+  table.add(base, Affine{});
+  MaterialDesc m = base;
+  m.finish.brilliance = 2;
+  table.add(m, Affine{});
+  m = base;
+  m.finish.reflection.exponent = 0.5;
+  table.add(m, Affine{});
+  m = base;
+  m.interior.fadeDistance = 3;
+  table.add(m, Affine{});
+  m = base;
+  m.finish.roughness = 0.01;
+  table.add(m, Affine{});
+  EXPECT_EQ(table.surfaces().size(), 5u);
+  EXPECT_DOUBLE_EQ(table.surface(table[4]).specularExponent, 100);
+}
+
+TEST(MaterialTable, DerivedFlags) {
+  MaterialTable table;
+  MaterialDesc glass = solid({1, 1, 1}, 0.1, 1.5);
+  glass.pigment.color.filter = 0.9;
+  glass.finish.reflection.max = {0.1, 0.1, 0.1};
+  glass.finish.phong = 0.9;
+  table.add(glass, Affine{});
+  table.add(solid({1, 1, 1}, 0.6), Affine{});
+  EXPECT_FALSE(table[0].opaque);
+  EXPECT_TRUE(table.surface(table[0]).reflective);
+  EXPECT_TRUE(table.surface(table[0]).highlights);
+  EXPECT_TRUE(table[1].opaque);
+  EXPECT_FALSE(table.surface(table[1]).reflective);
+  EXPECT_FALSE(table.surface(table[1]).highlights);
+  EXPECT_FALSE(table.anyChecker());
+}
+
+// A checker alternates its colours by the parity of floor(x) + floor(y) + floor(z) in
+// pattern space (the object's transform undone); a see-through second colour makes the
+// material see-through.
+TEST(MaterialTable, CheckerPigment) {
+  MaterialTable table;
+  MaterialDesc m;
+  m.pigment.checker = CheckerDesc{{{1, 1, 1}, 0, 0}, {{0, 0, 0}, 0, 0.5}};
+  table.add(m, Affine::translate({0.5, 0, 0}));
+  ASSERT_TRUE(table.anyChecker());
+  const Material& mat = table[0];
+  EXPECT_FALSE(mat.opaque);
+  EXPECT_EQ(table.pigmentAt(mat, {0.75, 0.5, 0.5}).rgb, (Color{1, 1, 1}));   // pattern (0.25, .5, .5)
+  EXPECT_EQ(table.pigmentAt(mat, {0.25, 0.5, 0.5}).transmit, 0.5);          // pattern (-0.25, .5, .5)
+  EXPECT_EQ(table.pigmentAt(mat, {1.75, 1.5, 0.5}).rgb, (Color{1, 1, 1}));  // pattern (1.25, 1.5, .5)
+  EXPECT_EQ(table.pigmentAt(mat, {1.75, 0.5, 0.5}).transmit, 0.5);
+  // A point a rounding error below a cell's plane falls in the upper cell, as in POV-Ray.
+  EXPECT_EQ(table.pigmentAt(mat, {0.5 - 1e-12, 0.5, 0.5}).rgb, (Color{1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace pvrt
