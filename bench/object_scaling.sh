@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # How render time grows with the number of objects: random sphere scenes of N spheres in
-# the same box, radii shrunk as N^(-1/3) so that the spheres cover a similar share of the
-# picture. With the BVH, time per ray should grow like log(N), not N.
+# the same box, radii shrunk as N^(-1/3) so that the spheres' total volume stays the same.
+# With the BVH, time per ray should grow like log(N), not N.
 # Usage: bench/object_scaling.sh [pvrt binary] [counts...]
 set -euo pipefail
 pvrt=${1:-build/pvrt}
