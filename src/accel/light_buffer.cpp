@@ -112,7 +112,6 @@ int resolutionFor(const std::vector<LightBuffer::Occluder>& occluders, const Vec
   return int(std::clamp(std::ceil(4 / median), 8.0, 256.0));
 }
 
-
 // The angle between two unit vectors, accurate for small angles too (acos of the dot
 // product is not).
 double angleBetween(const Vec3& x, const Vec3& y) { return 2 * std::atan2(length(x - y), length(x + y)); }
@@ -122,8 +121,8 @@ double angleBetween(const Vec3& x, const Vec3& y) { return 2 * std::atan2(length
 // rounding (the ball's own hit test is exact to far less than 1e-9 radians). None when the
 // ball is missing or holds the light: the box's footprint alone decides.
 struct Cone {
-  Vec3 axis;                   // unit
-  double sinHalf = 0, cosHalf = 0;  // of half the half-angle
+  Vec3 axis;                        // unit
+  double sinHalf = 0, cosHalf = 0;  // of half the cone's half-angle
   bool any = false;
 };
 
@@ -180,7 +179,7 @@ class CellCones {
   std::vector<Cell> cells_;
 };
 
-// Calls f(cell index) for each cell where a primitive may be seen: within its box's
+// Calls visit(cell index) for each cell where a primitive may be seen: within its box's
 // footprint on a face and, if it has one, its ball's cone.
 template <class F>
 void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& cones, int res, F&& visit) {
