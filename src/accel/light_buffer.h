@@ -56,15 +56,16 @@ class LightBuffer {
   // The primitives that may lie along direction `fromLight` (any length), nearest first;
   // false for a zero or non-finite direction, which has no cell.
   bool cell(const Vec3& fromLight, std::span<const Entry>& out) const;
-  // Hints that cell(fromLight) will soon be read: prefetchCell starts fetching where its
-  // list is, prefetchList (which waits for that) the list's first entries. Between the
-  // two, other work (other lights' cells) overlaps the wait.
-  void prefetchCell(const Vec3& fromLight) const {
-    const int index = cellIndexOf(fromLight);
+  // The cell of a direction from the light; -1 for a zero or non-finite one, or when there
+  // are no cells.
+  int cellIndexOf(const Vec3& fromLight) const;
+  // Hints that cell `index` (from cellIndexOf, -1 for none) will soon be read: prefetchCell
+  // starts fetching where its list is, prefetchList (which waits for that) the list's first
+  // entries. Between the two, other work (other lights' cells) overlaps the wait.
+  void prefetchCell(int index) const {
     if (index >= 0) __builtin_prefetch(&offsets_[size_t(index)]);
   }
-  void prefetchList(const Vec3& fromLight) const {
-    const int index = cellIndexOf(fromLight);
+  void prefetchList(int index) const {
     if (index >= 0) __builtin_prefetch(&entries_[offsets_[size_t(index)]]);
   }
   // The primitives whose box holds the light or covers much of its view: tested for every
@@ -79,8 +80,6 @@ class LightBuffer {
 
  private:
   int cellIndex(int face, int i, int j) const { return (face * res_ + j) * res_ + i; }
-  // The cell of a direction; -1 for a zero or non-finite one, or when there are no cells.
-  int cellIndexOf(const Vec3& d) const;
 
   Vec3 light_;
   int res_ = 1;                    // cells along each side of a face

@@ -185,10 +185,14 @@ class Tracer {
 
   // Starts fetching the light-buffer cells that the shadow segments from p will read, all
   // lights' at once so that their cache misses overlap instead of coming one by one.
-  void prefetchShadowCells(const Vec3& p) const {
+  void prefetchShadowCells(const Vec3& p) {
     const size_t lights = std::min(scene_.lights.size(), scene_.lightBuffers.size());
-    for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchCell(p - scene_.lights[j].location);
-    for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(p - scene_.lights[j].location);
+    cells_.resize(lights);
+    for (size_t j = 0; j < lights; ++j) {
+      cells_[j] = scene_.lightBuffers[j].cellIndexOf(p - scene_.lights[j].location);
+      scene_.lightBuffers[j].prefetchCell(cells_[j]);
+    }
+    for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(cells_[j]);
   }
 
   static Vec3 mirror(const Vec3& d, const Vec3& n) { return normalize(d - n * (2.0 * dot(d, n))); }
@@ -499,6 +503,7 @@ class Tracer {
   Occlusion occlusion_[kMaxPacket];
   uint32_t blocker_[kMaxPacket];
   std::vector<PacketLight> known_;  // one per light
+  std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
   std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
