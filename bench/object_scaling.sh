@@ -3,24 +3,46 @@
 # the same box, radii shrunk as N^(-1/3) so that the spheres' total volume stays the same.
 # With the BVH, time per ray should grow like log(N), not N.
 # Usage: bench/object_scaling.sh [pvrt binary] [counts...]
+# Environment: SPP (samples per pixel, default 4), THREADS (default 2), SEED (default 1),
+# ROUNDS (default 1): each round renders every scene once, in turn, so that the machine's
+# drift falls on all of them alike; the table gives medians [min-max] of the render stage
+# and each scene's median against the first one's.
 set -euo pipefail
 pvrt=${1:-build/pvrt}
 shift || true
 counts=("$@")
 ((${#counts[@]})) || counts=(100 1000 10000 100000)
+spp=${SPP:-4} threads=${THREADS:-2} seed=${SEED:-1} rounds=${ROUNDS:-1}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-printf '%10s %12s %12s %14s %16s\n' spheres "load+build s" "render s" "tests/ray" "Mrays/s"
 for n in "${counts[@]}"; do
   scale=$(awk -v n="$n" 'BEGIN { printf "%.6g", (100 / n) ^ (1 / 3) }')
   rmin=$(awk -v s="$scale" 'BEGIN { printf "%.6g", 0.2 * s }')
   rmax=$(awk -v s="$scale" 'BEGIN { printf "%.6g", 0.8 * s }')
-  "$pvrt" generate --spheres "$n" --lights 5 --seed 1 --radius-min "$rmin" --radius-max "$rmax" -o "$work/s$n.xml"
-  "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W 640 -H 400 --spp 4 --stats --quiet >"$work/stats$n.txt"
-  awk -v n="$n" '
-    /^  Time/ { load = $3; build = $6; render = $9 }
+  "$pvrt" generate --spheres "$n" --lights 5 --seed "$seed" --radius-min "$rmin" --radius-max "$rmax" -o "$work/s$n.xml"
+done
+for ((r = 0; r < rounds; ++r)); do
+  for n in "${counts[@]}"; do
+    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W 640 -H 400 --spp "$spp" --threads "$threads" --stats \
+      --quiet >>"$work/stats$n.txt"
+  done
+done
+echo "640x400, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
+printf '%10s %12s %26s %10s %14s %12s\n' spheres "load+build s" "render s: median [min-max]" "vs first" "tests/ray" "Mrays/s"
+first=""
+for n in "${counts[@]}"; do
+  row=$(awk -v n="$n" '
+    /^  Time/ { startup += $3 + $6; render[++k] = $9 }
     /^  Total rays/ { rays = $3 }
     /^  Intersection tests/ { tests = $3 }
-    END { printf "%10d %12.4f %12.4f %14.2f %16.2f\n", n, load + build, render, tests / rays, rays / render / 1e6 }
-  ' "$work/stats$n.txt"
+    END {
+      for (i = 1; i <= k; ++i)  # insertion sort of the render times
+        for (j = i; j > 1 && render[j - 1] > render[j]; --j) { t = render[j]; render[j] = render[j - 1]; render[j - 1] = t }
+      median = render[int((k + 1) / 2)]
+      printf "%.4f %.4f %.4f %.4f %.2f %.2f\n", startup / k, median, render[1], render[k], tests / rays, rays / median / 1e6
+    }' "$work/stats$n.txt")
+  read -r startup median lo hi perRay mrays <<<"$row"
+  first=${first:-$median}
+  printf '%10d %12.4f %26s %9.2fx %14.2f %12.2f\n' "$n" "$startup" "$median [$lo-$hi]" \
+    "$(awk -v a="$median" -v b="$first" 'BEGIN { print a / b }')" "$perRay" "$mrays"
 done
