@@ -134,7 +134,8 @@ class Tracer {
                 int level, double weight, const InteriorList& inside) {
     const Vec3& p = sp.p;
     if constexpr ((E & kShadows) != 0) {
-      if (scene_.prefetchLightBuffers) prefetchShadowCells(p);
+      // A packet's primary hit has its shadows answered already (tracePacket): no cells to read.
+      if (scene_.prefetchLightBuffers && knownRay_ < 0) prefetchShadowCells(p);
     }
     const uint32_t object = scene_.bvh.object(prim);
     const Material& m = scene_.materials[scene_.bvh.material(prim)];
