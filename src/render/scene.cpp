@@ -179,6 +179,13 @@ Scene buildScene(const SceneDesc& desc) {
   return s;
 }
 
+// From how many bounded primitives a packet's shadow segments are answered from the light
+// buffers. 640x400, c=9, 2 threads, random spheres whose total volume is that of 100: on
+// 10^2 spheres one walk of the tree for the whole packet renders in 0.244 s against 0.274 s
+// from the buffers; on 10^3 they tie (0.46 s); on 10^4 the buffers take 0.68 s against
+// 0.79 s, on 10^5 1.0 s against 1.3 s, on 10^6 1.47 s against 2.20 s.
+constexpr size_t kPacketShadowsFromBuffers = 1000;
+
 void buildLightBuffers(Scene& s) {
   const auto start = std::chrono::steady_clock::now();
   s.lightBuffers.assign(s.lights.size(), LightBuffer{});
@@ -203,6 +210,7 @@ void buildLightBuffers(Scene& s) {
   size_t bytes = 0;
   for (const LightBuffer& b : s.lightBuffers) bytes += b.bytes();
   s.prefetchLightBuffers = bytes > (size_t(16) << 20);
+  s.packetShadowsFromBuffers = occluders.size() >= kPacketShadowsFromBuffers;
   s.lightBufferSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

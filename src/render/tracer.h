@@ -269,7 +269,7 @@ class Tracer {
   }
 
   // The shadow segments toward light j of the packet's hits, those that lightContribution
-  // will ask for, answered together; the results land in known_.
+  // will ask for, answered before any is shaded; the results land in known_.
   void resolveShadows(const std::optional<ClosestHit>* hits, int count, size_t j) {
     const Light& light = scene_.lights[j];
     if (light.shadowless) return;
@@ -281,9 +281,25 @@ class Tracer {
       }
     }
     const double tol = scene_.tol.shadow;
+    // In a big scene each segment is answered from the light's buffer (as shadowFactor would
+    // answer it), in a small one all of them by one walk of the tree (Scene::packetShadowsFromBuffers).
+    const LightBuffer* buffer = scene_.packetShadowsFromBuffers && j < scene_.lightBuffers.size() &&
+                                        scene_.lightBuffers[j].valid()
+                                    ? &scene_.lightBuffers[j]
+                                    : nullptr;
     int m = 0;
     for (int k = 0; k < count; ++k) {
       if (!hits[k] || !pl.isLit(k)) continue;  // lightContribution stops before its shadow ray
+      if (buffer) {
+        const double shift = length(shadowOrigin_[k] - points_[k].p);
+        if (shift <= 0.5 * LightBuffer::kMargin * tol) {
+          uint32_t blocker = 0;
+          pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
+              *buffer, Ray{shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
+              (pl.dist[k] + shift) * (1 + 1e-9), stats_.intersectionTests, blocker));
+          continue;
+        }
+      }
       // The segment segmentTransmittance() would trace.
       segments_.set(m, shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]});
       segmentEnd_[m] = pl.dist[k] - tol;
