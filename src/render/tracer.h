@@ -196,6 +196,13 @@ class Tracer {
     for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(cells_[j]);
   }
 
+  // Whether a shadow segment that starts `shift` off its surface point (along the direction
+  // from that point to the light) stays within LightBuffer::kMargin of the light's ray, so
+  // that the light's buffer may answer it; and how far from the light it then reaches, for a
+  // point `dist` from the light.
+  bool bufferServes(double shift) const { return shift <= 0.5 * LightBuffer::kMargin * scene_.tol.shadow; }
+  static double bufferReach(double dist, double shift) { return (dist + shift) * (1 + 1e-9); }
+
   static Vec3 mirror(const Vec3& d, const Vec3& n) { return normalize(d - n * (2.0 * dot(d, n))); }
 
   double iorOf(uint32_t object) const { return scene_.materials.surface(scene_.materials[object]).interior.ior; }
@@ -292,11 +299,11 @@ class Tracer {
       if (!hits[k] || !pl.isLit(k)) continue;  // lightContribution stops before its shadow ray
       if (buffer) {
         const double shift = length(shadowOrigin_[k] - points_[k].p);
-        if (shift <= 0.5 * LightBuffer::kMargin * tol) {
+        if (bufferServes(shift)) {
           uint32_t blocker = 0;
           pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
               *buffer, Ray{shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
-              (pl.dist[k] + shift) * (1 + 1e-9), stats_.intersectionTests, blocker));
+              bufferReach(pl.dist[k], shift), stats_.intersectionTests, blocker));
           continue;
         }
       }
@@ -391,8 +398,7 @@ class Tracer {
     // against the tolerance kept from the light (it always is but for absurd coordinates).
     const size_t j = size_t(&light - scene_.lights.data());
     const double shift = length(p - sp.p);
-    if (j < scene_.lightBuffers.size() && scene_.lightBuffers[j].valid() &&
-        shift <= 0.5 * LightBuffer::kMargin * scene_.tol.shadow)
+    if (j < scene_.lightBuffers.size() && scene_.lightBuffers[j].valid() && bufferServes(shift))
       return segmentTransmittance(p, l, dist, inside, &scene_.lightBuffers[j], shift);
     return segmentTransmittance(p, l, dist, inside);
   }
@@ -414,7 +420,7 @@ class Tracer {
     // query settles those; only see-through objects need the ordered walk below.
     uint32_t blocker = 0;
     const Occlusion found =
-        buffer ? scene_.bvh.occlusionToLight(*buffer, segment, tol, dist - tol, (dist + shift) * (1 + 1e-9),
+        buffer ? scene_.bvh.occlusionToLight(*buffer, segment, tol, dist - tol, bufferReach(dist, shift),
                                              stats_.intersectionTests, blocker)
                : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
     switch (found) {
