@@ -196,6 +196,10 @@ class Tracer {
     for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(cells_[j]);
   }
 
+  // Light j's buffer, when it has one that was built.
+  const LightBuffer* bufferOf(size_t j) const {
+    return j < scene_.lightBuffers.size() && scene_.lightBuffers[j].valid() ? &scene_.lightBuffers[j] : nullptr;
+  }
   // Whether a shadow segment that starts `shift` off its surface point (along the direction
   // from that point to the light) stays within LightBuffer::kMargin of the light's ray, so
   // that the light's buffer may answer it; and how far from the light it then reaches, for a
@@ -290,10 +294,7 @@ class Tracer {
     const double tol = scene_.tol.shadow;
     // In a big scene each segment is answered from the light's buffer (as shadowFactor would
     // answer it), in a small one all of them by one walk of the tree (Scene::packetShadowsFromBuffers).
-    const LightBuffer* buffer = scene_.packetShadowsFromBuffers && j < scene_.lightBuffers.size() &&
-                                        scene_.lightBuffers[j].valid()
-                                    ? &scene_.lightBuffers[j]
-                                    : nullptr;
+    const LightBuffer* buffer = scene_.packetShadowsFromBuffers ? bufferOf(j) : nullptr;
     int m = 0;
     for (int k = 0; k < count; ++k) {
       if (!hits[k] || !pl.isLit(k)) continue;  // lightContribution stops before its shadow ray
@@ -398,8 +399,8 @@ class Tracer {
     // against the tolerance kept from the light (it always is but for absurd coordinates).
     const size_t j = size_t(&light - scene_.lights.data());
     const double shift = length(p - sp.p);
-    if (j < scene_.lightBuffers.size() && scene_.lightBuffers[j].valid() && bufferServes(shift))
-      return segmentTransmittance(p, l, dist, inside, &scene_.lightBuffers[j], shift);
+    if (const LightBuffer* buffer = bufferOf(j); buffer && bufferServes(shift))
+      return segmentTransmittance(p, l, dist, inside, buffer, shift);
     return segmentTransmittance(p, l, dist, inside);
   }
 
