@@ -99,8 +99,8 @@ std::vector<std::string_view> words(const char* text) {
 }
 
 Attributes::Attributes(const tinyxml2::XMLElement* e, FileName file,
-                       const std::vector<std::string_view>& known)
-    : e_(e), file_(file) {
+                       const std::vector<std::string_view>& known, int lineOffset)
+    : e_(e), file_(file), lineOffset_(lineOffset) {
   int count = 0;
   for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) {
     const std::string_view name = a->Name();
@@ -118,7 +118,7 @@ Attributes::Attributes(const tinyxml2::XMLElement* e, FileName file,
   }
 }
 
-SourceLoc Attributes::loc() const { return {file_, e_->GetLineNum()}; }
+SourceLoc Attributes::loc() const { return {file_, e_->GetLineNum() + lineOffset_}; }
 Error Attributes::error(const std::string& what) const { return sceneError(loc(), printable(e_->Name()), what); }
 Error Attributes::missing(const char* name) const {
   return error("missing required attribute '" + std::string(name) + "'");

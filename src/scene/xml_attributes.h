@@ -38,7 +38,10 @@ class Attributes {
   // `known`: every attribute the element may carry. Any other is refused here, before a
   // value is read, so that a misspelt required attribute (`radus`) is reported as the
   // unknown one, together with the name it resembles, not as a missing `radius`.
-  Attributes(const tinyxml2::XMLElement* e, FileName file, const std::vector<std::string_view>& known);
+  // `lineOffset` is added to tinyxml2's line numbers: a piece of a file (scene/xml_split.h)
+  // is parsed from its own first line.
+  Attributes(const tinyxml2::XMLElement* e, FileName file, const std::vector<std::string_view>& known,
+             int lineOffset = 0);
 
   SourceLoc loc() const;
   Error error(const std::string& what) const;
@@ -69,6 +72,7 @@ class Attributes {
 
   const tinyxml2::XMLElement* e_;
   FileName file_;
+  int lineOffset_ = 0;
   // Bit i: the element's i-th attribute has been asked about. The constructor refuses
   // unknown attributes and XML refuses repeated ones, so an element has no more
   // attributes than its known list, far fewer than 64.

@@ -140,7 +140,7 @@ size_t firstBadCharacterReference(std::string_view s) {
   return std::string_view::npos;
 }
 
-void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
+void checkSceneText(std::string_view bytes, const std::string& name) {
   if (const size_t bad = firstNonTextByte(bytes); bad != std::string_view::npos) {
     const auto c = static_cast<unsigned char>(bytes[bad]);
     throw sceneError({name, lineAt(bytes, bad)}, "xml",
@@ -152,6 +152,14 @@ void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std
     throw sceneError({name, lineAt(bytes, bad)}, "xml",
                      "character reference " + std::string(ref) + " is not an XML character");
   }
+}
+
+void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
+  checkSceneText(bytes, name);
+  parseCheckedText(doc, bytes, name);
+}
+
+void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
   if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) return;
   const int line = std::max(1, doc.ErrorLineNum());
   std::string what;

@@ -31,7 +31,12 @@ size_t utf8SequenceLength(std::string_view s, size_t i);
 // the attribute value short.
 size_t firstBadCharacterReference(std::string_view bytes);
 
-// Parses `bytes` into `doc`; `name` stands for the file in messages.
+// Refuses what is not XML text (firstNonTextByte, firstBadCharacterReference) with a
+// `file:line:` pvrt::Error; `name` stands for the file in messages.
+void checkSceneText(std::string_view bytes, const std::string& name);
+// Parses `bytes` into `doc`, or throws a `file:line:` pvrt::Error saying why it cannot.
 void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name);
+// parseDocument() for bytes that checkSceneText() has passed.
+void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name);
 
 }  // namespace pvrt

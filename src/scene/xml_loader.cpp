@@ -4,15 +4,20 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <future>
 #include <map>
+#include <optional>
 #include <set>
 #include <string_view>
+#include <thread>
 
 #include "core/error.h"
 #include "scene/xml_attributes.h"
 #include "scene/xml_document.h"
+#include "scene/xml_split.h"
 
 namespace pvrt {
 
@@ -69,7 +74,66 @@ class Loader {
  public:
   explicit Loader(const std::string& file) : file_(file) {}
 
+  // The whole file as one tree.
   SceneDesc load(const tinyxml2::XMLDocument& doc) {
+    const XMLElement* root = begin(doc);
+    // Room for every element up front: a scene of a million objects would otherwise be
+    // moved about twenty times as the vector grows, each time into fresh memory.
+    size_t elements = 0;
+    for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) ++elements;
+    scene_.objects.reserve(elements);
+    for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) element(e);
+    return std::move(scene_);
+  }
+
+  // The file a piece at a time (scene/xml_split.h): `skeleton` is the file with the root's
+  // children blanked out (their lines kept), `pieces` hold them. A few pieces are parsed at
+  // a time, side by side, and read in file order, so the scene and its first error are those
+  // of load(). nullopt when a piece is not well-formed XML: only the whole file's parse can
+  // then tell which error comes first.
+  std::optional<SceneDesc> loadPieces(const tinyxml2::XMLDocument& skeleton, std::string_view bytes,
+                                      const XmlSplit& split) {
+    const XMLElement* root = begin(skeleton);
+    if (root->FirstChildElement()) return std::nullopt;  // the skeleton's root should be empty
+    scene_.objects.reserve(split.elements);
+    const size_t count = split.pieces.size();
+    // One piece a core at a time; tinyxml2 documents share nothing.
+    const size_t batch = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<tinyxml2::XMLDocument> docs(std::min(batch, count));
+    auto parsed = [&](size_t first) {  // parses pieces [first, first + docs.size()): all well-formed?
+      const size_t n = std::min(docs.size(), count - first);
+      std::vector<char> ok(n);
+      auto parse = [&](size_t k) {
+        const XmlPiece& p = split.pieces[first + k];
+        ok[k] = docs[k].Parse(bytes.data() + p.begin, p.end - p.begin) == tinyxml2::XML_SUCCESS;
+      };
+      std::vector<std::future<void>> tasks;
+      for (size_t k = 1; k < n; ++k) tasks.push_back(std::async(std::launch::async, parse, k));
+      parse(0);
+      for (auto& t : tasks) t.get();
+      return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+    };
+    for (size_t first = 0; first < count; first += docs.size()) {
+      if (!parsed(first)) return std::nullopt;
+      try {
+        for (size_t k = 0; k < docs.size() && first + k < count; ++k) {
+          lineOffset_ = split.pieces[first + k].firstLine - 1;
+          for (const XMLElement* e = docs[k].FirstChildElement(); e; e = e->NextSiblingElement()) element(e);
+        }
+      } catch (const Error&) {
+        // The whole file's parse would have refused malformed XML further on before this.
+        for (size_t rest = first + docs.size(); rest < count; rest += docs.size())
+          if (!parsed(rest)) return std::nullopt;
+        throw;
+      }
+    }
+    lineOffset_ = 0;
+    return std::move(scene_);
+  }
+
+ private:
+  // The checks of the document and its root; the root.
+  const XMLElement* begin(const tinyxml2::XMLDocument& doc) {
     const XMLElement* root = doc.RootElement();
     if (!root) throw sceneError({file_, 1}, "scene", "the file has no <scene> element");
     // tinyxml2 keeps whatever follows the root; XML allows only comments there.
@@ -86,47 +150,44 @@ class Loader {
     attrs(root).done();
     noText(root);
     scene_.path = file_.str();
-    bool haveCamera = false, haveGlobals = false, haveBackground = false;
-    // Room for every element up front: a scene of a million objects would otherwise be
-    // moved about twenty times as the vector grows, each time into fresh memory.
-    size_t elements = 0;
-    for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) ++elements;
-    scene_.objects.reserve(elements);
-    for (const XMLElement* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
-      noText(e);
-      const std::string name = e->Name();
-      if (name == "camera") {
-        once(e, haveCamera);
-        scene_.camera = camera(e);
-      } else if (name == "global_settings") {
-        once(e, haveGlobals);
-        scene_.globals = globals(e);
-      } else if (name == "background") {
-        once(e, haveBackground);
-        Attributes a = attrs(e);
-        scene_.background = a.color("color", {0, 0, 0});
-        a.done();
-        noChildren(e);
-      } else if (name == "image") {
-        if (scene_.image) throw sceneError(locOf(e), name, "may appear only once");
-        scene_.image = image(e);
-      } else if (name == "light_source") {
-        scene_.lights.push_back(light(e));
-      } else if (name == "material") {
-        scene_.materials.push_back(namedMaterial(e));
-      } else {
-        scene_.objects.push_back(object(e));
-      }
-    }
-    return std::move(scene_);
+    return root;
   }
 
- private:
-  SourceLoc locOf(const XMLElement* e) const { return {file_, e->GetLineNum()}; }
+  // One child of the root.
+  void element(const XMLElement* e) {
+    noText(e);
+    const std::string name = e->Name();
+    if (name == "camera") {
+      once(e, haveCamera_);
+      scene_.camera = camera(e);
+    } else if (name == "global_settings") {
+      once(e, haveGlobals_);
+      scene_.globals = globals(e);
+    } else if (name == "background") {
+      once(e, haveBackground_);
+      Attributes a = attrs(e);
+      scene_.background = a.color("color", {0, 0, 0});
+      a.done();
+      noChildren(e);
+    } else if (name == "image") {
+      if (scene_.image) throw sceneError(locOf(e), name, "may appear only once");
+      scene_.image = image(e);
+    } else if (name == "light_source") {
+      scene_.lights.push_back(light(e));
+    } else if (name == "material") {
+      scene_.materials.push_back(namedMaterial(e));
+    } else {
+      scene_.objects.push_back(object(e));
+    }
+  }
+
+  SourceLoc locOf(const XMLElement* e) const { return {file_, e->GetLineNum() + lineOffset_}; }
   Error errorAt(const XMLElement* e, const std::string& what) const {
     return sceneError(locOf(e), printable(e->Name()), what);
   }
-  Attributes attrs(const XMLElement* e) const { return Attributes(e, file_, knownAttributes(e->Name())); }
+  Attributes attrs(const XMLElement* e) const {
+    return Attributes(e, file_, knownAttributes(e->Name()), lineOffset_);
+  }
 
   void once(const XMLElement* e, bool& seen) const {
     if (seen) throw errorAt(e, "may appear only once");
@@ -137,7 +198,8 @@ class Loader {
   void noText(const XMLElement* e) const {
     for (const tinyxml2::XMLNode* n = e->FirstChild(); n; n = n->NextSibling())
       if (n->ToUnknown() || n->ToDeclaration()) {
-        throw sceneError({file_, n->GetLineNum()}, "xml", "<!...> and <?...?> are not allowed inside elements");
+        throw sceneError({file_, n->GetLineNum() + lineOffset_}, "xml",
+                         "<!...> and <?...?> are not allowed inside elements");
       } else if (const auto* t = n->ToText()) {
         const std::string_view s = t->Value();
         const size_t from = s.find_first_not_of(" \t\r\n");
@@ -557,11 +619,39 @@ class Loader {
 
   FileName file_;
   SceneDesc scene_;
+  bool haveCamera_ = false, haveGlobals_ = false, haveBackground_ = false;
+  int lineOffset_ = 0;  // added to tinyxml2's line numbers: nonzero while reading a piece
 };
 
-SceneDesc parse(std::string_view bytes, const std::string& name) {
+// The file with the root's children replaced by their newlines alone: its declaration,
+// comments, root and what follows keep their lines.
+std::string skeletonOf(std::string_view bytes, const XmlSplit& split) {
+  std::string out(bytes.substr(0, split.bodyBegin));
+  out.append(size_t(std::count(bytes.begin() + std::ptrdiff_t(split.bodyBegin),
+                                bytes.begin() + std::ptrdiff_t(split.bodyEnd), '\n')),
+             '\n');
+  out.append(bytes.substr(split.bodyEnd));
+  return out;
+}
+
+SceneDesc parse(std::string_view bytes, const std::string& name, const LoadOptions& options) {
+  if (options.piecesRead) *options.piecesRead = 0;
+  checkSceneText(bytes, name);
+  if (bytes.size() > options.pieceBytes) {
+    if (const std::optional<XmlSplit> split = splitXmlRoot(bytes, options.pieceBytes)) {
+      tinyxml2::XMLDocument skeleton;
+      const std::string text = skeletonOf(bytes, *split);
+      if (skeleton.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) {
+        if (std::optional<SceneDesc> s = Loader(name).loadPieces(skeleton, bytes, *split)) {
+          if (options.piecesRead) *options.piecesRead = split->pieces.size();
+          s->path = name;
+          return std::move(*s);
+        }
+      }
+    }
+  }
   tinyxml2::XMLDocument doc;
-  parseDocument(doc, bytes, name);
+  parseCheckedText(doc, bytes, name);
   SceneDesc s = Loader(name).load(doc);
   s.path = name;
   return s;
@@ -569,8 +659,12 @@ SceneDesc parse(std::string_view bytes, const std::string& name) {
 
 }  // namespace
 
-SceneDesc loadSceneString(const std::string& xml, const std::string& name) { return parse(xml, name); }
+SceneDesc loadSceneString(const std::string& xml, const std::string& name, const LoadOptions& options) {
+  return parse(xml, name, options);
+}
 
-SceneDesc loadSceneFile(const std::string& path) { return parse(readSceneBytes(path), path); }
+SceneDesc loadSceneFile(const std::string& path, const LoadOptions& options) {
+  return parse(readSceneBytes(path), path, options);
+}
 
 }  // namespace pvrt

@@ -3,14 +3,25 @@
 // pvrt::Error with ExitCode::SceneError; nothing is half-loaded.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "scene/scene_desc.h"
 
 namespace pvrt {
 
-SceneDesc loadSceneFile(const std::string& path);
+struct LoadOptions {
+  // Files larger than this are parsed in pieces of about this size (scene/xml_split.h), a
+  // few at a time side by side, instead of as one tree; the scene and the errors are the
+  // same either way.
+  size_t pieceBytes = size_t(4) << 20;
+  // When set, receives how many pieces were read (0: the file was parsed whole).
+  size_t* piecesRead = nullptr;
+};
+
+SceneDesc loadSceneFile(const std::string& path, const LoadOptions& options = {});
 // `name` stands for the file name in messages.
-SceneDesc loadSceneString(const std::string& xml, const std::string& name = "<string>");
+SceneDesc loadSceneString(const std::string& xml, const std::string& name = "<string>",
+                          const LoadOptions& options = {});
 
 }  // namespace pvrt

@@ -1,21 +1,43 @@
 // libFuzzer target for the scene loader: the bytes are a scene file; it is loaded from
 // memory and built (the stage after loading: camera, lights, materials, BVH). Anything but
 // success or a pvrt::Error(SceneError) with a one-line `fuzz.xml:LINE: error: ` message is a
-// finding: a crash, a sanitizer report, another exception, or a malformed message.
+// finding: a crash, a sanitizer report, another exception, or a malformed message. So is a
+// difference between loading the bytes whole and in pieces of a byte (scene/xml_split.h):
+// the same scene, or the same message.
 // Built with -DPVRT_FUZZ=ON by tools/fuzz.sh (clang only).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
 #include "render/scene.h"
 #include "scene/xml_loader.h"
+#include "scene/xml_writer.h"
+
+namespace {
+
+// The scene as XML, or the error's message.
+std::string outcome(const std::string& text, const std::string& name, size_t pieceBytes) {
+  try {
+    return pvrt::sceneToXml(pvrt::loadSceneString(text, name, {pieceBytes}));
+  } catch (const pvrt::Error& e) {
+    return std::string("error: ") + e.what();
+  }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string name = "fuzz.xml";
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const std::string whole = outcome(text, name, std::numeric_limits<size_t>::max());
+  if (const std::string pieces = outcome(text, name, 1); pieces != whole) {
+    std::fprintf(stderr, "loaded whole:\n%s\nloaded in pieces:\n%s\n", whole.c_str(), pieces.c_str());
+    std::abort();
+  }
   try {
-    const std::string text(reinterpret_cast<const char*>(data), size);
     const pvrt::Scene scene = pvrt::buildScene(pvrt::loadSceneString(text, name));
   } catch (const pvrt::Error& e) {
     const std::string m = e.what();

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -17,14 +18,22 @@
 namespace pvrt {
 namespace {
 
-std::string errorOf(const std::string& xml) {
+std::string errorOf(const std::string& xml, size_t pieceBytes) {
   try {
-    loadSceneString(xml, "t.xml");
+    loadSceneString(xml, "t.xml", {pieceBytes});
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::SceneError);
     return e.what();
   }
   return "(no error)";
+}
+
+// The message of loading `xml` whole, which loading it in pieces of a byte (as a big file
+// is, scene/xml_split.h) must repeat.
+std::string errorOf(const std::string& xml) {
+  const std::string whole = errorOf(xml, std::numeric_limits<size_t>::max());
+  EXPECT_EQ(errorOf(xml, 1), whole) << "in pieces";
+  return whole;
 }
 
 std::string inScene(const std::string& body) { return "<scene>\n" + body + "\n</scene>"; }

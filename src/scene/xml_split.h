@@ -1,0 +1,36 @@
+// Cuts a big scene file into pieces of whole top-level elements, so that the loader can
+// parse it a piece at a time. tinyxml2 builds its whole tree in memory, about four bytes
+// for every byte of text: a scene of a million spheres (243 MB) would take a gigabyte of
+// tree at once, which is most of its load time. Pieces of a few megabytes take a few tens,
+// and two or more of them can be parsed at the same time.
+//
+// The cut is a light scan, not an XML parser: it only has to find where the root's
+// children begin and end. Anything it does not expect (a DOCTYPE, text or a processing
+// instruction among the root's children, unbalanced tags, deep nesting) makes it give up,
+// and the loader then parses the file whole, which reports the problem as it always has.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace pvrt {
+
+struct XmlPiece {
+  size_t begin = 0, end = 0;  // byte offsets: whole elements of the root, with the space and comments around them
+  int firstLine = 1;          // the file's line at `begin`
+};
+
+struct XmlSplit {
+  size_t bodyBegin = 0;  // just after the root's start tag
+  size_t bodyEnd = 0;    // where the root's end tag starts
+  std::vector<XmlPiece> pieces;  // in file order, covering [bodyBegin, bodyEnd)
+  size_t elements = 0;           // the root's child elements
+};
+
+// The root's children in pieces of at least `pieceBytes` bytes (but the last), each ending
+// after an element; nullopt when the scan gives up (see above).
+std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes);
+
+}  // namespace pvrt

@@ -1,0 +1,175 @@
+// Loading a file in pieces (scene/xml_split.h): the cut finds the root's children or gives
+// up, and a scene loaded in pieces equals the scene loaded whole, down to every line number
+// and every error message.
+#include "scene/xml_split.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "generate/random_scene.h"
+#include "scene/xml_loader.h"
+#include "scene/xml_writer.h"
+
+namespace pvrt {
+namespace {
+
+constexpr size_t kWhole = std::numeric_limits<size_t>::max();
+
+std::string slice(const std::string& s, const XmlPiece& p) { return s.substr(p.begin, p.end - p.begin); }
+
+TEST(XmlSplit, CutsAfterWholeChildrenOfTheRoot) {
+  const std::string xml =
+      "<?xml version=\"1.0\"?>\n<!-- a > b -->\n<scene>\n"
+      "  <sphere center=\"0 0 0\" radius=\"1\"><pigment color='1 0 0'/></sphere>\n"
+      "  <!-- <sphere/> in a comment -->\n"
+      "  <box corner1=\"0 0 0\" corner2=\"1 1 1\" material=\"a>b\"/>\n"
+      "  <material name=\"m\">\n    <finish diffuse=\"0.5\"/>\n  </material>\n"
+      "</scene>\n";
+  const std::optional<XmlSplit> split = splitXmlRoot(xml, 1);
+  ASSERT_TRUE(split);
+  EXPECT_EQ(split->elements, 3u);
+  EXPECT_EQ(xml.substr(0, split->bodyBegin), "<?xml version=\"1.0\"?>\n<!-- a > b -->\n<scene>");
+  EXPECT_EQ(xml.substr(split->bodyEnd), "</scene>\n");
+  ASSERT_EQ(split->pieces.size(), 3u);  // an element each, the last with the space before the end tag
+  EXPECT_EQ(slice(xml, split->pieces[0]),
+            "\n  <sphere center=\"0 0 0\" radius=\"1\"><pigment color='1 0 0'/></sphere>");
+  EXPECT_EQ(slice(xml, split->pieces[1]),
+            "\n  <!-- <sphere/> in a comment -->\n  <box corner1=\"0 0 0\" corner2=\"1 1 1\" material=\"a>b\"/>");
+  EXPECT_EQ(slice(xml, split->pieces[2]), "\n  <material name=\"m\">\n    <finish diffuse=\"0.5\"/>\n  </material>\n");
+  EXPECT_EQ(split->pieces[0].firstLine, 3);
+  EXPECT_EQ(split->pieces[1].firstLine, 4);
+  EXPECT_EQ(split->pieces[2].firstLine, 6);
+  for (size_t i = 1; i < split->pieces.size(); ++i) EXPECT_EQ(split->pieces[i].begin, split->pieces[i - 1].end);
+
+  // Big pieces: everything in one.
+  const std::optional<XmlSplit> one = splitXmlRoot(xml, 1000);
+  ASSERT_TRUE(one);
+  ASSERT_EQ(one->pieces.size(), 1u);
+  EXPECT_EQ(one->pieces[0].begin, one->bodyBegin);
+  EXPECT_EQ(one->pieces[0].end, one->bodyEnd);
+}
+
+TEST(XmlSplit, GivesUpOnWhatItDoesNotExpect) {
+  for (const char* xml : {
+           "<!DOCTYPE scene>\n<scene><sphere/></scene>",  // a DOCTYPE
+           "<scene/>",                                    // nothing inside
+           "<scene><sphere/>text</scene>",                // text among the children
+           "<scene><?pi x?><sphere/></scene>",            // a processing instruction among them
+           "<scene><![CDATA[x]]></scene>",                // CDATA among them
+           "<scene><sphere><pigment></sphere>",           // no end tag for the root
+           "<scene><sphere center=\"0 0 0></scene>",      // an unclosed quote
+           "<scene><sphere><!ELEMENT x></sphere></scene>",
+           "text<scene/>",
+           "",
+       })
+    EXPECT_FALSE(splitXmlRoot(xml, 1)) << xml;
+  std::string deep = "<scene>";
+  for (int i = 0; i < 100; ++i) deep += "<a>";
+  for (int i = 0; i < 100; ++i) deep += "</a>";
+  EXPECT_FALSE(splitXmlRoot(deep + "</scene>", 1));
+}
+
+// Every line number the loader stores, in a fixed order.
+std::vector<int> linesOf(const SceneDesc& s) {
+  std::vector<int> lines{s.camera.loc.line, s.globals.loc.line, s.image ? s.image->loc.line : 0};
+  auto material = [&](const MaterialDesc& m) {
+    for (int line : {m.loc.line, m.pigment.loc.line, m.finish.loc.line, m.interior.loc.line}) lines.push_back(line);
+  };
+  for (const LightDesc& l : s.lights) lines.push_back(l.loc.line);
+  for (const MaterialDesc& m : s.materials) material(m);
+  for (const ObjectDesc& o : s.objects) {
+    lines.push_back(o.loc.line);
+    material(o.material);
+  }
+  return lines;
+}
+
+// The scene or the error, loaded with pieces of `pieceBytes`.
+std::string outcome(const std::string& xml, size_t pieceBytes, std::vector<int>* lines = nullptr,
+                    size_t* pieces = nullptr) {
+  try {
+    const SceneDesc s = loadSceneString(xml, "t.xml", {pieceBytes, pieces});
+    if (lines) *lines = linesOf(s);
+    return sceneToXml(s);
+  } catch (const Error& e) {
+    return std::string("error: ") + e.what();
+  }
+}
+
+void expectSameInPieces(const std::string& xml, const std::string& what) {
+  std::vector<int> wholeLines, pieceLines;
+  const std::string whole = outcome(xml, kWhole, &wholeLines);
+  for (size_t pieceBytes : {size_t(1), size_t(100), size_t(4096)}) {
+    size_t pieces = 0;
+    EXPECT_EQ(outcome(xml, pieceBytes, &pieceLines, &pieces), whole) << what << ", pieces of " << pieceBytes;
+    EXPECT_EQ(pieceLines, wholeLines) << what << ", pieces of " << pieceBytes;
+    // Read in pieces indeed, not parsed whole after all (as a file of small pieces should be).
+    if (pieceBytes == 1 && whole.rfind("error: ", 0) != 0) {
+      EXPECT_GT(pieces, 1u) << what;
+    }
+  }
+}
+
+std::string fileText(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(XmlSplit, EveryRepositorySceneLoadsTheSameInPieces) {
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/scenes"))
+    if (entry.path().extension() == ".xml") {
+      expectSameInPieces(fileText(entry.path()), entry.path().filename().string());
+      ++n;
+    }
+  EXPECT_GE(n, 5);
+}
+
+// The end-to-end corpus of bad files: each one's message, line included, is the same.
+TEST(XmlSplit, EveryBadFileGivesTheSameErrorInPieces) {
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/tests/e2e/bad")) {
+    const std::string xml = fileText(entry.path());
+    const std::string whole = outcome(xml, kWhole);
+    for (size_t pieceBytes : {size_t(1), size_t(64)})
+      EXPECT_EQ(outcome(xml, pieceBytes), whole) << entry.path().filename() << ", pieces of " << pieceBytes;
+    ++n;
+  }
+  EXPECT_GE(n, 100);
+}
+
+TEST(XmlSplit, AGeneratedSceneAndItsErrorsAreTheSameInPieces) {
+  GenerateOptions g;
+  g.spheres = 3000;
+  const std::string xml = sceneToXml(generateScene(g));
+  expectSameInPieces(xml, "3000 spheres");
+  const SceneDesc whole = loadSceneString(xml, "t.xml", {kWhole});
+  ASSERT_EQ(whole.objects.size(), 3001u);
+
+  // An error deep in the file keeps its line; malformed XML further on still comes first,
+  // as it does when the whole file is parsed before any element is read.
+  const size_t last = xml.rfind("<sphere");
+  const std::string badFlag = xml.substr(0, last) + "<sphere no_shadow=\"maybe\" " + xml.substr(last + 7);
+  EXPECT_NE(outcome(badFlag, kWhole).find("no_shadow"), std::string::npos);
+  expectSameInPieces(badFlag, "a bad no_shadow at the end");
+  const size_t first = xml.find("<sphere");
+  const size_t lastEnd = xml.rfind("</sphere>");
+  const std::string badThenMalformed = xml.substr(0, first) + "<sphere no_shadow=\"maybe\" " +
+                                       xml.substr(first + 7, lastEnd - first - 7) + "</sphre>" +
+                                       xml.substr(lastEnd + 9);
+  EXPECT_NE(outcome(badThenMalformed, kWhole).find("malformed XML"), std::string::npos);
+  ASSERT_TRUE(splitXmlRoot(badThenMalformed, 1));  // the cut does not see it; tinyxml2 does
+  expectSameInPieces(badThenMalformed, "a bad no_shadow, then malformed XML");
+}
+
+}  // namespace
+}  // namespace pvrt
