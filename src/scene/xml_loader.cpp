@@ -93,9 +93,6 @@ class Loader {
   // then tell which error comes first.
   std::optional<SceneDesc> loadPieces(const tinyxml2::XMLDocument& skeleton, std::string_view bytes,
                                       const XmlSplit& split) {
-    const XMLElement* root = begin(skeleton);
-    if (root->FirstChildElement()) return std::nullopt;  // the skeleton's root should be empty
-    scene_.objects.reserve(split.elements);
     const size_t count = split.pieces.size();
     // One piece a core at a time; tinyxml2 documents share nothing.
     const size_t batch = std::max(1u, std::thread::hardware_concurrency());
@@ -113,19 +110,24 @@ class Loader {
       for (auto& t : tasks) t.get();
       return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
     };
-    for (size_t first = 0; first < count; first += docs.size()) {
-      if (!parsed(first)) return std::nullopt;
-      try {
-        for (size_t k = 0; k < docs.size() && first + k < count; ++k) {
+    size_t wellFormed = 0;  // pieces [0, wellFormed) parsed without error
+    try {
+      const XMLElement* root = begin(skeleton);
+      if (root->FirstChildElement()) return std::nullopt;  // the skeleton's root should be empty
+      scene_.objects.reserve(split.elements);
+      for (size_t first = 0; first < count; first += docs.size()) {
+        if (!parsed(first)) return std::nullopt;
+        wellFormed = std::min(count, first + docs.size());
+        for (size_t k = 0; first + k < wellFormed; ++k) {
           lineOffset_ = split.pieces[first + k].firstLine - 1;
           for (const XMLElement* e = docs[k].FirstChildElement(); e; e = e->NextSiblingElement()) element(e);
         }
-      } catch (const Error&) {
-        // The whole file's parse would have refused malformed XML further on before this.
-        for (size_t rest = first + docs.size(); rest < count; rest += docs.size())
-          if (!parsed(rest)) return std::nullopt;
-        throw;
       }
+    } catch (const Error&) {
+      // The whole file's parse refuses malformed XML anywhere before any element is read.
+      for (size_t rest = wellFormed; rest < count; rest += docs.size())
+        if (!parsed(rest)) return std::nullopt;
+      throw;
     }
     lineOffset_ = 0;
     return std::move(scene_);

@@ -56,7 +56,9 @@ class Scanner {
       } else if (at("<![CDATA[")) {
         if (!skipPast("]]>")) return false;
       } else if (at("</")) {
-        if (!skipPast(">")) return false;
+        const size_t close = s_.find('>', pos);
+        if (close == std::string_view::npos || s_.find('<', pos + 1) < close) return false;
+        pos = close + 1;
         if (--depth == 0) return true;
       } else if (at("<!") || at("<?")) {
         return false;

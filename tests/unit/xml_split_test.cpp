@@ -171,5 +171,21 @@ TEST(XmlSplit, AGeneratedSceneAndItsErrorsAreTheSameInPieces) {
   expectSameInPieces(badThenMalformed, "a bad no_shadow, then malformed XML");
 }
 
+// Found by the fuzz target: errors the skeleton (the root, what follows it) reports must
+// not come before malformed XML inside a piece, and an end tag is no place for a '<'.
+TEST(XmlSplit, MalformedPiecesComeBeforeErrorsAroundTheRoot) {
+  const std::string secondRoot = "\n</scene>\n<pigment color=\"1 0 0\"/>\n";
+  const std::string mismatched =
+      "<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n</sphre>\n<box corner1=\"0 0 0\" corner2=\"1 1 1\"/>" +
+      secondRoot;
+  ASSERT_TRUE(splitXmlRoot(mismatched, 1));
+  EXPECT_NE(outcome(mismatched, kWhole).find("malformed XML"), std::string::npos);
+  expectSameInPieces(mismatched, "a mismatched end tag, then a second root");
+
+  const std::string lessThan = "<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n</sp<scene>" + secondRoot;
+  EXPECT_FALSE(splitXmlRoot(lessThan, 1));
+  expectSameInPieces(lessThan, "'<' in an end tag, then a second root");
+}
+
 }  // namespace
 }  // namespace pvrt
