@@ -383,6 +383,8 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   }
   stats_.nodes = nodes_.size();
   stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * (sizeof(Primitive) + sizeof(LeafItem));
+  for (const Primitive& p : prims_)
+    if (p.transform) stats_.bytes += sizeof(Transform);  // an upper bound: primitives may share one
   stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -75,7 +75,7 @@ class Bvh {
 
   // What shading needs of primitive i (an index into primitives()), read from the compact
   // leaf records where they have it, so that a hit on one of a million spheres does not
-  // also fetch its ~400-byte Primitive: the same answers as the Primitive's.
+  // also fetch its ~200-byte Primitive: the same answers as the Primitive's.
   uint32_t material(uint32_t i) const { return items_[i].material; }
   uint32_t object(uint32_t i) const { return items_[i].object; }
   std::optional<ShapeHit> intersect(uint32_t i, const Ray& ray, double tMin, double tMax) const {
@@ -135,7 +135,7 @@ class Bvh {
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
-  // What the leaves and shading need of each primitive, 48 bytes apiece beside the ~400 of
+  // What the leaves and shading need of each primitive, 48 bytes apiece beside the ~200 of
   // a Primitive, so that traversal of a big scene streams through little memory.
   struct LeafItem {
     enum class Kind : uint8_t { Sphere, Plane, Other };  // untransformed spheres and planes are tested from here

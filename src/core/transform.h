@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 
 #include "core/vec3.h"
@@ -56,5 +57,12 @@ struct Transform {
   }
   Vec3 normalToWorld(const Vec3& n) const { return normalize(toObject.applyTransposed(n)); }
 };
+
+// A transform held by pointer: a Primitive carries one only when its shape is not in world
+// space, and 192 bytes inline in every one would double the memory of a million spheres.
+using SharedTransform = std::shared_ptr<const Transform>;
+inline SharedTransform share(const std::optional<Transform>& t) {
+  return t ? std::make_shared<const Transform>(*t) : nullptr;
+}
 
 }  // namespace pvrt

@@ -48,7 +48,7 @@ struct ShapeHit {
 
 struct Primitive {
   Shape shape;
-  std::optional<Transform> transform;  // object -> world, when the shape is not in world space
+  SharedTransform transform;  // object -> world, when the shape is not in world space
   uint32_t material = 0;
   uint32_t object = 0;  // index of the ObjectDesc it came from (meshes give many primitives)
   bool noShadow = false;

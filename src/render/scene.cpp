@@ -115,8 +115,11 @@ class PrimitiveBuilder {
     add(shape, false);
   }
   void add(Shape shape, bool keepTransform) {
-    Primitive p{std::move(shape), std::nullopt, object_, object_, noShadow_};
-    if (keepTransform && !identity_) p.transform = Transform::from(xf_);
+    Primitive p{std::move(shape), nullptr, object_, object_, noShadow_};
+    if (keepTransform && !identity_) {
+      if (!shared_) shared_ = share(Transform::from(xf_));  // one for all the object's primitives
+      p.transform = shared_;
+    }
     out_.push_back(std::move(p));
   }
 
@@ -125,6 +128,7 @@ class PrimitiveBuilder {
   bool noShadow_;
   Affine xf_;
   bool identity_;
+  SharedTransform shared_;
 };
 
 EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {

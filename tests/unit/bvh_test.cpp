@@ -58,8 +58,8 @@ class SceneMaker : public test::RandomGeometry {
       p.material = n - i;
       if (i % 5 == 0) {  // a sphere at the origin, scaled, rotated and moved to c
         p.shape = SphereShape{{0, 0, 0}, r};
-        p.transform = Transform::from(
-            Affine::scale({1, 0.5, 2}).then(Affine::rotate({10, 20, 30})).then(Affine::translate(c)));
+        p.transform = share(Transform::from(
+            Affine::scale({1, 0.5, 2}).then(Affine::rotate({10, 20, 30})).then(Affine::translate(c))));
       }
       prims.push_back(p);
     }

@@ -28,8 +28,8 @@ Primitive prim(Shape s) {
 }
 Primitive prim(Shape s, const Affine& a) {
   Primitive p = prim(std::move(s));
-  p.transform = Transform::from(a);
-  EXPECT_TRUE(p.transform.has_value());
+  p.transform = share(Transform::from(a));
+  EXPECT_TRUE(p.transform);
   return p;
 }
 
