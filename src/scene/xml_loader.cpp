@@ -12,7 +12,6 @@
 #include <optional>
 #include <set>
 #include <string_view>
-#include <thread>
 
 #include "core/error.h"
 #include "scene/xml_attributes.h"
@@ -87,46 +86,40 @@ class Loader {
   }
 
   // The file a piece at a time (scene/xml_split.h): `skeleton` is the file with the root's
-  // children blanked out (their lines kept), `pieces` hold them. A few pieces are parsed at
-  // a time, side by side, and read in file order, so the scene and its first error are those
-  // of load(). nullopt when a piece is not well-formed XML: only the whole file's parse can
-  // then tell which error comes first.
+  // children blanked out (their lines kept), `pieces` hold them. While one piece is read
+  // into the scene, the next is parsed on another thread; pieces are read in file order, so
+  // the scene and its first error are those of load(). nullopt when a piece is not
+  // well-formed XML: only the whole file's parse can then tell which error comes first.
   std::optional<SceneDesc> loadPieces(const tinyxml2::XMLDocument& skeleton, std::string_view bytes,
                                       const XmlSplit& split) {
     const size_t count = split.pieces.size();
-    // One piece a core at a time; tinyxml2 documents share nothing.
-    const size_t batch = std::max(1u, std::thread::hardware_concurrency());
-    std::vector<tinyxml2::XMLDocument> docs(std::min(batch, count));
-    auto parsed = [&](size_t first) {  // parses pieces [first, first + docs.size()): all well-formed?
-      const size_t n = std::min(docs.size(), count - first);
-      std::vector<char> ok(n);
-      auto parse = [&](size_t k) {
-        const XmlPiece& p = split.pieces[first + k];
-        ok[k] = docs[k].Parse(bytes.data() + p.begin, p.end - p.begin) == tinyxml2::XML_SUCCESS;
-      };
-      std::vector<std::future<void>> tasks;
-      for (size_t k = 1; k < n; ++k) tasks.push_back(std::async(std::launch::async, parse, k));
-      parse(0);
-      for (auto& t : tasks) t.get();
-      return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+    tinyxml2::XMLDocument docs[2];  // piece k goes to docs[k % 2]
+    auto parse = [&](size_t k) {
+      const XmlPiece& p = split.pieces[k];
+      return docs[k % 2].Parse(bytes.data() + p.begin, p.end - p.begin) == tinyxml2::XML_SUCCESS;
     };
-    size_t wellFormed = 0;  // pieces [0, wellFormed) parsed without error
+    std::future<bool> next;  // parsing the piece after the one being read
+    size_t wellFormed = 0;   // pieces [0, wellFormed) parsed without error
     try {
       const XMLElement* root = begin(skeleton);
       if (root->FirstChildElement()) return std::nullopt;  // the skeleton's root should be empty
       scene_.objects.reserve(split.elements);
-      for (size_t first = 0; first < count; first += docs.size()) {
-        if (!parsed(first)) return std::nullopt;
-        wellFormed = std::min(count, first + docs.size());
-        for (size_t k = 0; first + k < wellFormed; ++k) {
-          lineOffset_ = split.pieces[first + k].firstLine - 1;
-          for (const XMLElement* e = docs[k].FirstChildElement(); e; e = e->NextSiblingElement()) element(e);
+      if (!parse(0)) return std::nullopt;
+      wellFormed = 1;
+      for (size_t k = 0; k < count; ++k) {
+        if (k + 1 < count) next = std::async(std::launch::async, parse, k + 1);
+        lineOffset_ = split.pieces[k].firstLine - 1;
+        for (const XMLElement* e = docs[k % 2].FirstChildElement(); e; e = e->NextSiblingElement()) element(e);
+        if (k + 1 < count) {
+          if (!next.get()) return std::nullopt;
+          wellFormed = k + 2;
         }
       }
     } catch (const Error&) {
       // The whole file's parse refuses malformed XML anywhere before any element is read.
-      for (size_t rest = wellFormed; rest < count; rest += docs.size())
-        if (!parsed(rest)) return std::nullopt;
+      if (next.valid()) next.wait();  // its document is about to be parsed into again
+      for (size_t k = wellFormed; k < count; ++k)
+        if (!parse(k)) return std::nullopt;
       throw;
     }
     lineOffset_ = 0;

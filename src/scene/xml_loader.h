@@ -11,9 +11,9 @@
 namespace pvrt {
 
 struct LoadOptions {
-  // Files larger than this are parsed in pieces of about this size (scene/xml_split.h), a
-  // few at a time side by side, instead of as one tree; the scene and the errors are the
-  // same either way.
+  // Files larger than this are parsed in pieces of about this size (scene/xml_split.h),
+  // the next on another thread while one is read, instead of as one tree; the scene and
+  // the errors are the same either way.
   size_t pieceBytes = size_t(4) << 20;
   // When set, receives how many pieces were read (0: the file was parsed whole).
   size_t* piecesRead = nullptr;
