@@ -175,11 +175,9 @@ class Scenes:
         return path
 
     def spheres(self, n):
-        # The spheres keep to the same box as n grows, radii shrinking as n^(-1/3) so that their total
-        # volume stays the same (bench/object_scaling.sh).
-        s = (100 / n) ** (1 / 3)
-        return self.generate("spheres_%d" % n, "--spheres", str(n), "--lights", "5", "--seed", "1",
-                             "--radius-min", "%.6g" % (0.2 * s), "--radius-max", "%.6g" % (0.8 * s))
+        # The spheres keep to the same box as n grows, pvrt generate's default radii shrinking as
+        # n^(-1/3) so that their total volume stays the same (bench/object_scaling.sh).
+        return self.generate("spheres_%d" % n, "--spheres", str(n), "--lights", "5", "--seed", "1")
 
     def fixed(self):
         noref = os.path.join(self.work, "paper1_noreflection.xml")

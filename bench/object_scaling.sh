@@ -15,11 +15,8 @@ counts=("$@")
 spp=${SPP:-4} threads=${THREADS:-2} seed=${SEED:-1} rounds=${ROUNDS:-1}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for n in "${counts[@]}"; do
-  scale=$(awk -v n="$n" 'BEGIN { printf "%.6g", (100 / n) ^ (1 / 3) }')
-  rmin=$(awk -v s="$scale" 'BEGIN { printf "%.6g", 0.2 * s }')
-  rmax=$(awk -v s="$scale" 'BEGIN { printf "%.6g", 0.8 * s }')
-  "$pvrt" generate --spheres "$n" --lights 5 --seed "$seed" --radius-min "$rmin" --radius-max "$rmax" -o "$work/s$n.xml"
+for n in "${counts[@]}"; do  # pvrt generate's default radii shrink as N^(-1/3)
+  "$pvrt" generate --spheres "$n" --lights 5 --seed "$seed" -o "$work/s$n.xml"
 done
 for ((r = 0; r < rounds; ++r)); do
   for n in "${counts[@]}"; do

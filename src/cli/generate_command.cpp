@@ -13,6 +13,7 @@ namespace {
 
 struct GenerateCliOptions {
   GenerateOptions g;
+  bool radiusMinGiven = false, radiusMaxGiven = false;
   std::string output, preset;
   std::vector<double> sphereBox, lightBox, palette;
   bool noFloor = false;
@@ -27,6 +28,10 @@ int runGenerate(GenerateCliOptions o) {
   if (o.preset == "paper2") g = paperScene2();
   if (!o.preset.empty()) {  // explicit options still win over the preset
     g.seed = o.g.seed != GenerateOptions{}.seed ? o.g.seed : g.seed;
+  } else {  // a radius not given keeps the spheres' share of the box (radiusScaleFor)
+    const double scale = radiusScaleFor(g.spheres);
+    if (!o.radiusMinGiven) g.radiusMin *= scale;
+    if (!o.radiusMaxGiven) g.radiusMax *= scale;
   }
   if (!o.sphereBox.empty()) { g.sphereBoxLo = lo(o.sphereBox); g.sphereBoxHi = hi(o.sphereBox); }
   if (!o.lightBox.empty()) { g.lightBoxLo = lo(o.lightBox); g.lightBoxHi = hi(o.lightBox); }
@@ -50,8 +55,14 @@ Command addGenerateCommand(CLI::App& app) {
   c->add_option("--seed", o->g.seed, "Random seed")->capture_default_str();
   c->add_option("--width", o->g.width, "Image width stored in the scene")->check(CLI::Range(1, 65536))->capture_default_str();
   c->add_option("--height", o->g.height, "Image height stored in the scene")->check(CLI::Range(1, 65536))->capture_default_str();
-  c->add_option("--radius-min", o->g.radiusMin, "Smallest sphere radius")->check(CLI::PositiveNumber)->capture_default_str();
-  c->add_option("--radius-max", o->g.radiusMax, "Largest sphere radius")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--radius-min", o->g.radiusMin,
+                 "Smallest sphere radius (default 0.2, times (100/N)^(1/3) above N = 100 spheres)")
+      ->check(CLI::PositiveNumber)
+      ->each([o](const std::string&) { o->radiusMinGiven = true; });
+  c->add_option("--radius-max", o->g.radiusMax,
+                 "Largest sphere radius (default 0.8, times (100/N)^(1/3) above N = 100 spheres)")
+      ->check(CLI::PositiveNumber)
+      ->each([o](const std::string&) { o->radiusMaxGiven = true; });
   c->add_option("--sphere-box", o->sphereBox, "Sphere centres' box: x0 y0 z0 x1 y1 z1")->expected(6);
   c->add_option("--light-box", o->lightBox, "Light positions' box: x0 y0 z0 x1 y1 z1")->expected(6);
   c->add_option("--palette", o->palette, "Weights of matte shiny mirror glass materials")->expected(4);

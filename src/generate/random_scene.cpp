@@ -69,6 +69,8 @@ MaterialDesc material(Kind kind, const Color& c) {
 
 }  // namespace
 
+double radiusScaleFor(int spheres) { return spheres <= 100 ? 1.0 : std::cbrt(100.0 / spheres); }
+
 SceneDesc generateScene(const GenerateOptions& o) {
   if (o.spheres < 0 || o.lights < 0) throw Error(ExitCode::Usage, "counts must not be negative");
   if (!(o.radiusMin > 0) || o.radiusMax < o.radiusMin)

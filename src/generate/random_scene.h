@@ -31,6 +31,11 @@ struct GenerateOptions {
 
 SceneDesc generateScene(const GenerateOptions& options);
 
+// The factor on the default radii that keeps N spheres' total volume that of the paper's
+// 100 in the same box: (100 / N)^(1/3), and 1 up to 100 spheres. With the paper's radii
+// unscaled, 10^6 spheres would fill the box hundreds of spheres deep.
+double radiusScaleFor(int spheres);
+
 // Paper scene 1: 100 spheres and 5 lights, load spread over the whole image.
 GenerateOptions paperScene1();
 // Paper scene 2: 20 spheres and 5 lights, load concentrated in the upper-right quarter.

@@ -134,6 +134,13 @@ pvrt_expect_error(accuracy_reference_size 2 "is 160 x 100, the render would be 1
 pvrt_expect_error(accuracy_plot_not_png 2 "--plot must name a .png"
   ABSENT out.pdf ARGS accuracy ${PVRT_PAPER1} --plot <DIR>/out.pdf)
 
+# `pvrt generate`: default radii that keep the spheres' share of the box as N grows.
+add_test(NAME e2e.generate.radii
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/generate_radii.sh $<TARGET_FILE:pvrt> ${PVRT_E2E_DIR}/generate-radii)
+set_tests_properties(e2e.generate.radii PROPERTIES LABELS e2e)
+pvrt_expect_error(generate_radius_max_below_min 2 "radius-min <= radius-max"
+  ABSENT out.xml ARGS generate --spheres 100 --radius-max 0.1 -o <DIR>/out.xml)
+
 # `pvrt render --time-budget`: a square c is chosen and printed; budgets must be positive.
 add_test(NAME e2e.time_budget
   COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget.png -W 32 -H 20 --time-budget 0.2)
