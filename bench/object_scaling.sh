@@ -4,7 +4,7 @@
 # With the BVH, time per ray should grow like log(N), not N.
 # Usage: bench/object_scaling.sh [pvrt binary] [counts...]
 # Environment: SPP (samples per pixel, default 4), THREADS (default 2), SEED (default 1),
-# ROUNDS (default 1): each round renders every scene once, in turn, so that the machine's
+# WIDTH and HEIGHT (default 640x400), ROUNDS (default 1): each round renders every scene once, in turn, so that the machine's
 # drift falls on all of them alike; the table gives medians [min-max] of the render stage
 # and each scene's median against the first one's.
 set -euo pipefail
@@ -20,11 +20,11 @@ for n in "${counts[@]}"; do  # pvrt generate's default radii shrink as N^(-1/3)
 done
 for ((r = 0; r < rounds; ++r)); do
   for n in "${counts[@]}"; do
-    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W 640 -H 400 --spp "$spp" --threads "$threads" --stats \
+    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W ${WIDTH:-640} -H ${HEIGHT:-400} --spp "$spp" --threads "$threads" --stats \
       --quiet >>"$work/stats$n.txt"
   done
 done
-echo "640x400, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
+echo "${WIDTH:-640}x${HEIGHT:-400}, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
 printf '%10s %12s %26s %10s %14s %12s\n' spheres "load+build s" "render s: median [min-max]" "vs first" "tests/ray" "Mrays/s"
 first=""
 for n in "${counts[@]}"; do
