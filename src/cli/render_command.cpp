@@ -225,7 +225,7 @@ Prepared prepare(const RenderOptions& o) {
     writeFileAtomically(o.saveScene, sceneToXml(copy));
   }
   const auto t1 = Clock::now();
-  p.scene = buildScene(p.desc);
+  p.scene = buildScene(std::move(p.desc));  // frees the objects' descriptions early
   p.buildS = since(t1);
   return p;
 }

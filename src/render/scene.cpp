@@ -151,9 +151,8 @@ EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
   return e;
 }
 
-}  // namespace
-
-Scene buildScene(const SceneDesc& desc) {
+// buildScene's body; `release`, when given, is desc.objects, freed once read.
+Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
   Scene s;
   s.camera = Camera(desc.camera);
   s.globals = desc.globals;
@@ -177,11 +176,17 @@ Scene buildScene(const SceneDesc& desc) {
   for (const Primitive& p : prims) objects.extend(p.bounds());
   s.tol = rayTolerances(objects, s.camera.location());
   for (Primitive& p : prims) p.unit = float(s.tol.unit);
-  s.bvh = Bvh(std::move(prims));
   s.effects = deriveEffects(s, desc);
+  if (release) std::vector<ObjectDesc>().swap(*release);
+  s.bvh = Bvh(std::move(prims));
   buildLightBuffers(s);
   return s;
 }
+
+}  // namespace
+
+Scene buildScene(const SceneDesc& desc) { return build(desc, nullptr); }
+Scene buildScene(SceneDesc&& desc) { return build(desc, &desc.objects); }
 
 // From how many bounded primitives a packet's shadow segments are answered from the light
 // buffers. 640x400, c=9, 2 threads, random spheres whose total volume is that of 100: on

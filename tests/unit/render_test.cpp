@@ -133,5 +133,30 @@ TEST(Render, ShadowThroughFilterSphereMultipliesPerCrossing) {
   EXPECT_NEAR(r.image.row(0)[0], 0.81, 1e-6);  // the film stores float
 }
 
+// buildScene of a description it may consume frees the objects' descriptions (a big scene
+// must not hold them beside its BVH) and builds the same scene as from a kept description.
+TEST(Render, SceneBuiltFromAConsumedDescriptionIsTheSame) {
+  const SceneDesc desc = loadSceneString(R"(<scene>
+      <camera location="0 2 -6" look_at="0 0 0"/>
+      <light_source location="4 6 -4"/>
+      <plane normal="0 1 0" distance="-1"><pigment><checker/></pigment><finish reflection="0.3"/></plane>
+      <sphere center="0 0 0" radius="1"><pigment color="1 1 1" filter="0.8"/><interior ior="1.5"/></sphere>
+      <box corner1="1 -1 0" corner2="2 0 1"><pigment color="0.8 0.2 0.1"/></box>
+      </scene>)",
+                                         "consumed.xml");
+  SceneDesc consumed = desc;
+  const Scene kept = buildScene(desc), fromConsumed = buildScene(std::move(consumed));
+  EXPECT_TRUE(consumed.objects.empty());
+  EXPECT_EQ(consumed.objects.capacity(), 0u);
+  EXPECT_EQ(consumed.lights.size(), 1u);  // the rest is left as it was
+  EXPECT_EQ(fromConsumed.effects, kept.effects);
+  EXPECT_EQ(fromConsumed.bvh.primitives().size(), kept.bvh.primitives().size());
+  const RenderSettings s = settings(24, 16);
+  const RenderResult a = render(kept, s), b = render(fromConsumed, s);
+  EXPECT_EQ(b.image.data(), a.image.data());
+  EXPECT_EQ(b.totals.work(), a.totals.work());
+  EXPECT_GT(a.totals.refractedRays, 0u);
+}
+
 }  // namespace
 }  // namespace pvrt
