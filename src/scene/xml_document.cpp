@@ -50,6 +50,9 @@ std::string readSceneBytes(const std::string& path) {
   // O_NONBLOCK only kept open() from waiting for a FIFO's writer; reads should wait.
   ::fcntl(f.fd, F_SETFL, ::fcntl(f.fd, F_GETFL) & ~O_NONBLOCK);
   std::string bytes;
+  // A regular file's size is known: room for it up front, so that a file of hundreds of
+  // megabytes is not copied into ever bigger buffers (fresh memory each time) as it is read.
+  if (S_ISREG(st.st_mode) && st.st_size > 0) bytes.reserve(std::min<size_t>(size_t(st.st_size), kMaxSceneBytes) + 1);
   char buf[1 << 16];
   for (;;) {
     const ssize_t n = ::read(f.fd, buf, sizeof buf);
