@@ -133,12 +133,15 @@ class Tracer {
   Color shadeAt(const Ray& ray, uint32_t prim, const ShapeHit& hit, const SurfacePoint& sp, const Vec3& n,
                 int level, double weight, const InteriorList& inside) {
     const Vec3& p = sp.p;
+    const uint32_t object = scene_.bvh.object(prim);
+    // In a big scene the object's material is a cache miss: started before the light-buffer
+    // prefetch below, which waits on misses of its own, so that the two overlap.
+    const Material& m = scene_.materials[scene_.bvh.material(prim)];
     if constexpr ((E & kShadows) != 0) {
+      __builtin_prefetch(&m);
       // A packet's primary hit has its shadows answered already (tracePacket): no cells to read.
       if (scene_.prefetchLightBuffers && knownRay_ < 0) prefetchShadowCells(p);
     }
-    const uint32_t object = scene_.bvh.object(prim);
-    const Material& m = scene_.materials[scene_.bvh.material(prim)];
     const Surface& s = scene_.materials.surface(m);
     const FinishDesc& f = s.finish;
 
