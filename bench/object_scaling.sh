@@ -4,15 +4,16 @@
 # With the BVH, time per ray should grow like log(N), not N.
 # Usage: bench/object_scaling.sh [pvrt binary] [counts...]
 # Environment: SPP (samples per pixel, default 4), THREADS (default 2), SEED (default 1),
-# WIDTH and HEIGHT (default 640x400), ROUNDS (default 1): each round renders every scene once, in turn, so that the machine's
-# drift falls on all of them alike; the table gives medians [min-max] of the render stage
-# and each scene's median against the first one's.
+# WIDTH and HEIGHT (default 640x400), ROUNDS (default 1): each round renders every scene
+# once, in turn, so that the machine's drift falls on all of them alike; the table gives
+# medians [min-max] of the render stage and each scene's median against the first one's.
 set -euo pipefail
 pvrt=${1:-build/pvrt}
 shift || true
 counts=("$@")
 ((${#counts[@]})) || counts=(100 1000 10000 100000)
 spp=${SPP:-4} threads=${THREADS:-2} seed=${SEED:-1} rounds=${ROUNDS:-1}
+width=${WIDTH:-640} height=${HEIGHT:-400}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for n in "${counts[@]}"; do  # pvrt generate's default radii shrink as N^(-1/3)
@@ -20,11 +21,11 @@ for n in "${counts[@]}"; do  # pvrt generate's default radii shrink as N^(-1/3)
 done
 for ((r = 0; r < rounds; ++r)); do
   for n in "${counts[@]}"; do
-    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W ${WIDTH:-640} -H ${HEIGHT:-400} --spp "$spp" --threads "$threads" --stats \
+    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W "$width" -H "$height" --spp "$spp" --threads "$threads" --stats \
       --quiet >>"$work/stats$n.txt"
   done
 done
-echo "${WIDTH:-640}x${HEIGHT:-400}, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
+echo "${width}x${height}, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
 printf '%10s %12s %26s %10s %14s %12s\n' spheres "load+build s" "render s: median [min-max]" "vs first" "tests/ray" "Mrays/s"
 first=""
 for n in "${counts[@]}"; do
