@@ -124,19 +124,30 @@ class Builder {
     const double leafCost = kIntersectionCost * count;
     double bestCost = INFINITY;
     int bestAxis = -1, bestBin = 0;
+    // Every axis's bins in one pass over the items (a pass an axis read them three times).
+    bool binned[3];
+    double lo[3], scale[3];
     for (int axis = 0; axis < 3; ++axis) {
-      const double lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
-      if (!(extent > 0)) continue;
-      std::array<BuildBox, kBins> binBoxes;
-      std::array<uint32_t, kBins> binCount{};
-      const double scale = kBins / extent;
-      for (uint32_t i = begin; i < end; ++i) {
-        const int b = std::min(kBins - 1, int((items_[i].centroid[axis] - lo) * scale));
-        binBoxes[size_t(b)].extend(items_[i].bounds.lo, items_[i].bounds.hi);
-        ++binCount[size_t(b)];
+      lo[axis] = centroids.lo[axis];
+      const double extent = centroids.hi[axis] - lo[axis];
+      binned[axis] = extent > 0;
+      scale[axis] = binned[axis] ? kBins / extent : 0;
+    }
+    std::array<std::array<BuildBox, kBins>, 3> binBoxes;
+    std::array<std::array<uint32_t, kBins>, 3> binCount{};
+    for (uint32_t i = begin; i < end; ++i) {
+      const BuildItem& it = items_[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!binned[axis]) continue;
+        const int b = std::min(kBins - 1, int((it.centroid[axis] - lo[axis]) * scale[axis]));
+        binBoxes[size_t(axis)][size_t(b)].extend(it.bounds.lo, it.bounds.hi);
+        ++binCount[size_t(axis)][size_t(b)];
       }
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!binned[axis]) continue;
       std::array<Bounds, kBins> binBounds;
-      for (int b = 0; b < kBins; ++b) binBounds[size_t(b)] = binBoxes[size_t(b)].bounds();
+      for (int b = 0; b < kBins; ++b) binBounds[size_t(b)] = binBoxes[size_t(axis)][size_t(b)].bounds();
       // Sweep from the right to get the cost of every right side, then from the left.
       std::array<double, kBins> rightArea{};
       std::array<uint32_t, kBins> rightCount{};
@@ -144,7 +155,7 @@ class Builder {
       uint32_t n = 0;
       for (int b = kBins - 1; b > 0; --b) {
         acc.extend(binBounds[size_t(b)]);
-        n += binCount[size_t(b)];
+        n += binCount[size_t(axis)][size_t(b)];
         rightArea[size_t(b)] = acc.surfaceArea();
         rightCount[size_t(b)] = n;
       }
@@ -152,7 +163,7 @@ class Builder {
       n = 0;
       for (int b = 0; b < kBins - 1; ++b) {
         acc.extend(binBounds[size_t(b)]);
-        n += binCount[size_t(b)];
+        n += binCount[size_t(axis)][size_t(b)];
         const uint32_t right = rightCount[size_t(b + 1)];
         if (n == 0 || right == 0) continue;
         const double cost = acc.surfaceArea() * n + rightArea[size_t(b + 1)] * right;
@@ -172,10 +183,8 @@ class Builder {
       return begin + count / 2;
     }
     if (count <= kMaxLeafSize && splitCost >= leafCost) return end;
-    const double lo = centroids.lo[bestAxis];
-    const double scale = kBins / (centroids.hi[bestAxis] - lo);
     auto middle = std::partition(items_.begin() + begin, items_.begin() + end, [&](const BuildItem& it) {
-      return std::min(kBins - 1, int((it.centroid[bestAxis] - lo) * scale)) <= bestBin;
+      return std::min(kBins - 1, int((it.centroid[bestAxis] - lo[bestAxis]) * scale[bestAxis])) <= bestBin;
     });
     splitAxis_ = bestAxis;
     const uint32_t mid = uint32_t(middle - items_.begin());
