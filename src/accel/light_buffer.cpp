@@ -196,10 +196,17 @@ void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& con
 LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders)
     : light_(light), res_(resolutionFor(occluders, light)) {
   const size_t cells = 6 * size_t(res_) * res_;
+  const size_t budget = kEntriesPerPrimitive * occluders.size() + 65536;
   const CellCones cones(res_);
+  // Every (cell, entry) pair as the footprints and cones give them, in primitive order,
+  // then moved to their cells: each footprint and cone is worked out once.
+  struct Listing {
+    uint32_t cell;
+    Entry entry;
+  };
+  std::vector<Listing> listings;
+  listings.reserve(2 * occluders.size());
   std::vector<uint32_t> count(cells + 1, 0);
-  size_t total = 0;
-  std::vector<uint8_t> listed(occluders.size(), 0);  // 1 when listed in cells, 2 when everywhere
   for (uint32_t i = 0; i < occluders.size(); ++i) {
     if (occluders[i].box.empty()) continue;
     const RelativeBox box(occluders[i].box, light);
@@ -208,16 +215,16 @@ LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occlude
     for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res_)).cells();
     if (box.holdsLight() || cellsSeen > kCrowded) {
       everywhere_.push_back(i);
-      listed[i] = 2;
       continue;
     }
-    listed[i] = 1;
+    const Entry e{roundDown(box.distance()), i};
     forEachCell(f, coneOf(occluders[i], light), cones, res_, [&](int c) {
       ++count[size_t(c) + 1];
-      ++total;
+      listings.push_back({uint32_t(c), e});
     });
+    if (listings.size() > budget) break;  // no buffer (below), and no need to list the rest
   }
-  if (everywhere_.size() > kMaxEverywhere || total > kEntriesPerPrimitive * occluders.size() + 65536) {
+  if (everywhere_.size() > kMaxEverywhere || listings.size() > budget) {
     // Too many primitives too big for cells: the BVH answers this light's segments better.
     everywhere_.clear();
     return;
@@ -225,14 +232,8 @@ LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occlude
   for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
   offsets_ = count;
   entries_.resize(offsets_[cells]);
-  for (uint32_t i = 0; i < occluders.size(); ++i) {
-    if (listed[i] != 1) continue;
-    const RelativeBox box(occluders[i].box, light);
-    const Entry e{roundDown(box.distance()), i};
-    Footprint f[6];
-    for (int face = 0; face < 6; ++face) f[face] = footprint(box, face, res_);
-    forEachCell(f, coneOf(occluders[i], light), cones, res_, [&](int c) { entries_[count[size_t(c)]++] = e; });
-  }
+  for (const Listing& l : listings) entries_[count[l.cell]++] = l.entry;
+  std::vector<Listing>().swap(listings);
   for (size_t c = 0; c < cells; ++c) {
     std::sort(entries_.begin() + offsets_[c], entries_.begin() + offsets_[c + 1], [](const Entry& x, const Entry& y) {
       return x.near < y.near || (x.near == y.near && x.primitive < y.primitive);

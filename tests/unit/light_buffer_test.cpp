@@ -116,6 +116,42 @@ TEST(LightBuffer, APrimitiveAroundTheLightIsTestedEverywhere) {
   expectBufferAgrees(prims, {1.5, 2, 3}, gen, 4000);
 }
 
+// A light with more primitives around it than LightBuffer::kMaxEverywhere gets no buffer,
+// wherever in the list they come (here after a primitive the cells list).
+TEST(LightBuffer, TooManyPrimitivesAroundTheLightLeaveItToTheTree) {
+  std::vector<LightBuffer::Occluder> boxes{{{{1, 1, 1}, {2, 2, 2}}}};
+  for (size_t k = 0; k < LightBuffer::kMaxEverywhere; ++k) boxes.push_back({{{-1, -1, -1}, {1, 1, 1}}});
+  EXPECT_TRUE(LightBuffer({0, 0, 0}, boxes).valid());  // at the limit
+  boxes.push_back({{{-2, -2, -2}, {2, 2, 2}}});
+  const LightBuffer over({0, 0, 0}, boxes);
+  EXPECT_FALSE(over.valid());
+  EXPECT_TRUE(over.everywhere().empty());
+}
+
+// Cells are sized for the typical primitive; when many primitives are far bigger, their
+// lists would outgrow LightBuffer::kEntriesPerPrimitive entries a primitive (and a fixed
+// allowance), and the light gets no buffer.
+TEST(LightBuffer, PrimitivesSpanningManyCellsLeaveItToTheTree) {
+  const auto scene = [](int big) {
+    std::vector<LightBuffer::Occluder> boxes;
+    test::RandomGeometry random(17);
+    for (int k = 0; k < 2 * big + 1; ++k) {
+      // In front of the light along +z, 10 away: tiny ones (which set the cells' size), and
+      // big ones 11 to 13 cells across (fewer than LightBuffer::kCrowded cells in all).
+      const double half = k % 2 == 0 ? 0.001 : 0.4;
+      const Vec3 c{random.uniform(-2, 2), random.uniform(-2, 2), 10};
+      boxes.push_back({{c - Vec3(half), c + Vec3(half)}});
+    }
+    return boxes;
+  };
+  const LightBuffer few({0, 0, 0}, scene(100)), many({0, 0, 0}, scene(800));
+  EXPECT_EQ(few.resolution(), 256);
+  EXPECT_TRUE(few.everywhere().empty());
+  EXPECT_TRUE(few.valid());
+  EXPECT_GT(few.entries(), 100u * 100u);  // the big ones are listed in a hundred cells or more
+  EXPECT_FALSE(many.valid());
+}
+
 // A box the buffer cannot place (a NaN bound) is tested for every segment, as the BVH's
 // box test lets it through too.
 TEST(LightBuffer, ABoxWithANanBoundIsTestedEverywhere) {
