@@ -21,8 +21,8 @@ for n in "${counts[@]}"; do  # pvrt generate's default radii shrink as N^(-1/3)
 done
 for ((r = 0; r < rounds; ++r)); do
   for n in "${counts[@]}"; do
-    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W "$width" -H "$height" --spp "$spp" --threads "$threads" --stats \
-      --quiet >>"$work/stats$n.txt"
+    "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W "$width" -H "$height" --spp "$spp" \
+      --threads "$threads" --stats --quiet >>"$work/stats$n.txt"
   done
 done
 echo "${width}x${height}, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
