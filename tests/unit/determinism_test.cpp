@@ -2,6 +2,8 @@
 // thread count or work decomposition.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "test_scenes.h"
 
 namespace pvrt {
@@ -55,6 +57,28 @@ TEST(Determinism, LoadMapIsTheSameOnEveryBackend) {
   double sum = 0;
   for (float v : ra.load) sum += v;
   EXPECT_EQ(uint64_t(sum), ra.totals.work());
+}
+
+// Neighbouring pixels of a row share a packet unless a load map asks for each pixel's own
+// work, or the work item splits the pair (tiles of an odd size): the image must not tell.
+TEST(Determinism, PixelsSharingAPacketGiveTheImageOfPixelsTracedAlone) {
+  auto renderPov = [](int samples, Strategy st, int tile, bool loadMap) {
+    RenderSettings s = test::settings(37, 23, Backend::OpenMP, 2);
+    s.sampler = {SamplerKind::Pov, samples, 0};
+    s.schedule = {st, 0, tile};
+    s.loadMap = loadMap;
+    return test::renderXml(kScene, s);
+  };
+  for (int samples : {4, 9, 16, 36}) {  // 5 to 37 rays a pixel: pairs that fit a packet, and some that do not
+    const RenderResult alone = renderPov(samples, Strategy::Tiles, 8, true);
+    ASSERT_GT(alone.totals.refractedRays, 0u);
+    for (const auto& [st, tile] : {std::pair{Strategy::Tiles, 8}, {Strategy::Tiles, 7}, {Strategy::Cyclic, 8}}) {
+      const RenderResult r = renderPov(samples, st, tile, false);
+      EXPECT_EQ(r.image.data(), alone.image.data()) << "c=" << samples << " " << strategyName(st) << " " << tile;
+      EXPECT_EQ(r.totals.totalRays(), alone.totals.totalRays());
+      EXPECT_EQ(r.totals.shadingOps, alone.totals.shadingOps);
+    }
+  }
 }
 
 }  // namespace
