@@ -21,41 +21,54 @@ inline Color pixelColor(const Color* colors, size_t count) {
   return count == 1 ? sum : sum * (1.0 / double(count));
 }
 
-// The pixel loop over one rectangle. A pixel with enough rays is traced as packets of
-// them (they share the camera's origin). Two neighbouring pixels of a row, the left one
-// at an even x, share one packet when their rays fit in it: the tree is walked once for
-// both, which on the paper's scene at c=16 saves an eighth of the render (docs/design.md).
-// The pairs are fixed by position, so every schedule whose work items do not split them
-// (rows, and tiles of an even size) traces the same packets. A load map needs each
-// pixel's own work, so with one every pixel is traced alone; the image is the same
-// either way, since a packet gives every ray the answers it would get alone.
+// Neighbouring pixels of a row share one packet when their rays fit in it: the tree is
+// then walked once for all of them, and their hits' shadow segments go toward each light
+// together. How many: a power of two (up to 8), so that the groups tile every work item
+// whose width is a multiple of it; at c = 4, 9 and 16 with the pov sampler, 8, 4 and 2.
+inline constexpr int kMaxPacketPixels = 8;
+inline int pixelsPerPacket(size_t raysPerPixel) {
+  if (raysPerPixel < kMinPacket) return 1;
+  int k = 1;
+  while (2 * k <= kMaxPacketPixels && size_t(2 * k) * raysPerPixel <= size_t(kMaxPacket)) k *= 2;
+  return k;
+}
+
+// The pixel loop over one rectangle. A pixel with enough rays is traced as packets (its
+// rays share the camera's origin), and a group of pixelsPerPacket() neighbours, the first
+// at a multiple of that in x, as one packet. The groups are fixed by position, so every
+// schedule whose work items do not split them (rows, and tiles of the default size)
+// traces the same packets and counts the same work; one that splits a group traces its
+// pixels alone. A load map needs each pixel's own work, so with one every pixel is traced
+// alone. The image is the same either way: a packet gives each ray the answers it would
+// get alone, and each pixel's colours are summed in the same order.
 template <EffectSet E>
 void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const WorkItem& rect, Image& image,
                       float* load, RenderStats& stats) {
   Tracer<E> tracer(scene, stats);
-  std::vector<SubSample> offsets, partner;
+  std::vector<SubSample> offsets;
   std::vector<Ray> rays(kMaxPacket);
   std::vector<Color> colors(kMaxPacket);
   const int w = image.width(), h = image.height();
+  const int group = load ? 1 : pixelsPerPacket(size_t(sampler.count()));
   for (int y = rect.y0; y < rect.y1; ++y) {
     for (int x = rect.x0; x < rect.x1; ++x) {
+      if (group > 1 && x % group == 0 && x + group <= rect.x1) {
+        tracer.beginPixel();
+        size_t n = 0;
+        for (int i = 0; i < group; ++i) {
+          sampler.offsets(x + i, y, offsets);
+          scene.camera.rays(x + i, y, offsets.data(), int(offsets.size()), w, h, rays.data() + n);
+          n += offsets.size();
+        }
+        stats.primaryRays += uint64_t(n);
+        tracer.tracePacket(rays.data(), int(n), scene.cameraInteriors, colors.data());
+        const size_t each = n / size_t(group);
+        for (int i = 0; i < group; ++i) image.set(x + i, y, pixelColor(colors.data() + size_t(i) * each, each));
+        x += group - 1;
+        continue;
+      }
       sampler.offsets(x, y, offsets);
       const size_t n = offsets.size();
-      if (!load && x % 2 == 0 && x + 1 < rect.x1 && n >= kMinPacket) {
-        sampler.offsets(x + 1, y, partner);
-        const size_t m = partner.size();
-        if (n + m <= size_t(kMaxPacket)) {
-          tracer.beginPixel();
-          scene.camera.rays(x, y, offsets.data(), int(n), w, h, rays.data());
-          scene.camera.rays(x + 1, y, partner.data(), int(m), w, h, rays.data() + n);
-          stats.primaryRays += uint64_t(n + m);
-          tracer.tracePacket(rays.data(), int(n + m), scene.cameraInteriors, colors.data());
-          image.set(x, y, pixelColor(colors.data(), n));
-          image.set(x + 1, y, pixelColor(colors.data() + n, m));
-          ++x;
-          continue;
-        }
-      }
       const uint64_t before = stats.work();
       tracer.beginPixel();
       if (n < kMinPacket) {

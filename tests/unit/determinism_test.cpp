@@ -60,20 +60,24 @@ TEST(Determinism, LoadMapIsTheSameOnEveryBackend) {
 }
 
 // Neighbouring pixels of a row share a packet unless a load map asks for each pixel's own
-// work, or the work item splits the pair (tiles of an odd size): the image must not tell.
+// work, or the work item splits their group (tiles of an odd size): the image must not tell.
 TEST(Determinism, PixelsSharingAPacketGiveTheImageOfPixelsTracedAlone) {
-  auto renderPov = [](int samples, Strategy st, int tile, bool loadMap) {
+  auto renderWithSampler = [](SamplerKind kind, int samples, Strategy st, int tile, bool loadMap) {
     RenderSettings s = test::settings(37, 23, Backend::OpenMP, 2);
-    s.sampler = {SamplerKind::Pov, samples, 0};
+    s.sampler = {kind, samples, 5};
     s.schedule = {st, 0, tile};
     s.loadMap = loadMap;
     return test::renderXml(kScene, s);
   };
-  for (int samples : {4, 9, 16, 36}) {  // 5 to 37 rays a pixel: pairs that fit a packet, and some that do not
-    const RenderResult alone = renderPov(samples, Strategy::Tiles, 8, true);
+  // 4 to 37 rays a pixel: groups of 8, 4 and 2 pixels, and pixels that no group fits.
+  for (const auto& [kind, samples] : {std::pair{SamplerKind::Pov, 4}, std::pair{SamplerKind::Pov, 9},
+                                      std::pair{SamplerKind::Pov, 16}, std::pair{SamplerKind::Pov, 36},
+                                      std::pair{SamplerKind::Jitter, 4}}) {
+    const RenderResult alone = renderWithSampler(kind, samples, Strategy::Tiles, 8, true);
     ASSERT_GT(alone.totals.refractedRays, 0u);
-    for (const auto& [st, tile] : {std::pair{Strategy::Tiles, 8}, {Strategy::Tiles, 7}, {Strategy::Cyclic, 8}}) {
-      const RenderResult r = renderPov(samples, st, tile, false);
+    for (const auto& [st, tile] : {std::pair{Strategy::Tiles, 8}, std::pair{Strategy::Tiles, 7},
+                                   std::pair{Strategy::Cyclic, 8}}) {
+      const RenderResult r = renderWithSampler(kind, samples, st, tile, false);
       EXPECT_EQ(r.image.data(), alone.image.data()) << "c=" << samples << " " << strategyName(st) << " " << tile;
       EXPECT_EQ(r.totals.totalRays(), alone.totals.totalRays());
       EXPECT_EQ(r.totals.shadingOps, alone.totals.shadingOps);
