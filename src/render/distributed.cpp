@@ -23,7 +23,7 @@ class RankRenderer {
  public:
   RankRenderer(const Scene& scene, const RenderSettings& s, const WorkPlan& plan)
       : scene_(scene), s_(s), plan_(plan), sampler_(s.sampler), kernel_(kernelFor(scene.effects)),
-        image_(s.width, s.height), load_(size_t(s.width) * s.height, 0.0f),
+        image_(s.width, s.height), load_(s.loadMap ? size_t(s.width) * s.height : 0, 0.0f),
         threads_(s.threads > 0 ? s.threads : defaultThreadCount()), perThread_(size_t(threads_)) {}
 
   void render(const std::vector<int>& items) {
@@ -38,7 +38,8 @@ class RankRenderer {
     parallelFor(Backend::OpenMP, threads_, rows, [&](size_t r, int worker) {
       WorkerStats& ws = perThread_[size_t(worker)];
       const auto start = Clock::now();
-      kernel_(scene_, sampler_, rows.items[r], image_, load_.data(), ws.counts);
+      // No load map: no per-pixel work to keep, so neighbouring pixels may share packets.
+      kernel_(scene_, sampler_, rows.items[r], image_, s_.loadMap ? load_.data() : nullptr, ws.counts);
       ws.seconds += secondsSince(start);
       ws.pixels += rows.items[r].pixels();
     });
@@ -59,7 +60,7 @@ class RankRenderer {
       for (int y = it.y0; y < it.y1; ++y)
         for (int x = it.x0; x < it.x1; ++x) {
           const float* p = image_.row(y) + size_t(x) * 3;
-          out.insert(out.end(), {p[0], p[1], p[2], load_[size_t(y) * s_.width + x]});
+          out.insert(out.end(), {p[0], p[1], p[2], s_.loadMap ? load_[size_t(y) * s_.width + x] : 0.0f});
         }
     }
     return out;
