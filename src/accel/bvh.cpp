@@ -517,6 +517,29 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, doubl
   return transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 
+std::optional<ClosestHit> Bvh::closestToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax,
+                                              double reach, uint64_t& tests) const {
+  std::span<const LightBuffer::Entry> cell;
+  if (!buffer.cell(-ray.dir, cell)) return closest(ray, tMin, tMax, tests, /*skipNoShadow=*/true);
+  std::optional<ClosestHit> best;
+  double bestT = tMax;
+  auto test = [&](uint32_t i) {
+    if (items_[i].noShadow) return;
+    ++tests;
+    if (auto h = intersectItem(i, ray, tMin, bestT)) {
+      bestT = h->t;
+      best = ClosestHit{*h, i};
+    }
+  };
+  for (const LightBuffer::Entry& e : cell) {
+    if (e.near > reach) break;
+    test(e.primitive);
+  }
+  for (uint32_t i : buffer.everywhere()) test(i);
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) test(i);
+  return best;
+}
+
 std::vector<LightBuffer::Occluder> Bvh::occluders() const {
   std::vector<LightBuffer::Occluder> out(boundedCount_);
   for (uint32_t i = 0; i < boundedCount_; ++i) {

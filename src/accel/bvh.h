@@ -107,6 +107,11 @@ class Bvh {
   // radians of the light's ray along -ray.dir, and no farther than `reach` from the light.
   Occlusion occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
                              uint64_t& tests, uint32_t& blocker) const;
+  // closest(..., skipNoShadow = true) for a segment that ends at `buffer`'s light, found
+  // among the primitives of the buffer's cell: the same conditions as occlusionToLight.
+  // Only a hit at exactly the distance of another may be a different one of the two.
+  std::optional<ClosestHit> closestToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax,
+                                           double reach, uint64_t& tests) const;
   // The bounded primitives as light buffers see them, in the order of primitives(): their
   // boxes, and the balls of untransformed spheres.
   std::vector<LightBuffer::Occluder> occluders() const;

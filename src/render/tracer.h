@@ -396,11 +396,11 @@ class Tracer {
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) return areaShadow(light, p, l, inside);
     }
-    if (known != kUnknown) return orderedTransmittance(p, l, dist, inside);
+    const size_t j = size_t(&light - scene_.lights.data());
+    if (known != kUnknown) return orderedTransmittance(p, l, dist, inside, bufferOf(j));
     // The segment runs from p, a hair off the surface point, along the direction from the
     // surface point to the light: within kMargin of the light's ray when that hair is small
     // against the tolerance kept from the light (it always is but for absurd coordinates).
-    const size_t j = size_t(&light - scene_.lights.data());
     const double shift = length(p - sp.p);
     if (const LightBuffer* buffer = bufferOf(j); buffer && bufferServes(shift))
       return segmentTransmittance(p, l, dist, inside, buffer, shift);
@@ -432,17 +432,28 @@ class Tracer {
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
-    return orderedTransmittance(origin, dir, dist, inside);
+    return orderedTransmittance(origin, dir, dist, inside, buffer);
   }
 
   // The product of the filters of every surface the segment crosses, nearest first, or
-  // nothing as soon as one is opaque.
-  Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside) {
+  // nothing as soon as one is opaque. Each crossing is found from the one before (POV-Ray
+  // starts each step's ray there). `buffer`, when given, is the light's buffer: a step
+  // whose ray stays close enough to the light's ray for its cell to list everything it
+  // can meet (see bufferServes) is answered from that list instead of a walk of the tree.
+  Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
+                             const LightBuffer* buffer = nullptr) {
     const double tol = scene_.tol.shadow;
     Color k(1.0);
     for (;;) {
-      const auto found = scene_.bvh.closest(Ray{origin, dir}, tol, dist - tol,
-                                            stats_.intersectionTests, /*skipNoShadow=*/true);
+      const Ray step{origin, dir};
+      std::optional<ClosestHit> found;
+      const Vec3 fromLight = buffer ? origin - buffer->light() : Vec3{};
+      if (buffer && bufferServes(length(cross(fromLight, dir)))) {
+        found = scene_.bvh.closestToLight(*buffer, step, tol, dist - tol, length(fromLight) * (1 + 1e-9),
+                                          stats_.intersectionTests);
+      } else {
+        found = scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+      }
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
         return {};

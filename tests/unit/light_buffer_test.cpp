@@ -1,9 +1,11 @@
 // A light buffer must be an invisible speed-up too: for every shadow segment that ends at
 // its light, it gives the answer the BVH's occlusion query gives (blocked, see-through or
-// clear), whatever the light's place: outside the scene, among the primitives, inside one.
+// clear), and the nearest primitive that casts shadows that its closest query gives,
+// whatever the light's place: outside the scene, among the primitives, inside one.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <filesystem>
@@ -47,6 +49,7 @@ class Maker : public test::RandomGeometry {
 
 struct Answer {
   Occlusion viaTree, viaBuffer;
+  std::optional<ClosestHit> nearestViaTree, nearestViaBuffer;
 };
 
 // The segment from a point on the surface of primitive `i` (a sphere) toward the light,
@@ -63,6 +66,8 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
   Answer a;
   a.viaTree = bvh.occlusion(segment, kTol, dist - kTol, tests, blocker);
   a.viaBuffer = bvh.occlusionToLight(buffer, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests, blocker);
+  a.nearestViaTree = bvh.closest(segment, kTol, dist - kTol, tests, /*skipNoShadow=*/true);
+  a.nearestViaBuffer = bvh.closestToLight(buffer, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests);
   return a;
 }
 
@@ -78,6 +83,11 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
     if (length(buffer.light() - onSphere) <= 2 * kTol) continue;
     const Answer a = shadowOf(bvh, buffer, i, onSphere, 1e-12);
     ASSERT_EQ(int(a.viaBuffer), int(a.viaTree)) << "segment " << k << " from sphere " << i;
+    ASSERT_EQ(a.nearestViaBuffer.has_value(), a.nearestViaTree.has_value()) << "segment " << k;
+    if (a.nearestViaTree) {
+      EXPECT_EQ(a.nearestViaBuffer->primitive, a.nearestViaTree->primitive) << "segment " << k;
+      EXPECT_EQ(a.nearestViaBuffer->hit.t, a.nearestViaTree->hit.t) << "segment " << k;
+    }
     count += a.viaTree == Occlusion::Blocked;
   }
   if (blocked) *blocked = count;
