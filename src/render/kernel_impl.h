@@ -54,16 +54,16 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
     for (int x = rect.x0; x < rect.x1; ++x) {
       if (group > 1 && x % group == 0 && x + group <= rect.x1) {
         tracer.beginPixel();
-        size_t n = 0;
+        size_t first[kMaxPacketPixels + 1] = {};  // pixel i's rays are [first[i], first[i + 1])
         for (int i = 0; i < group; ++i) {
           sampler.offsets(x + i, y, offsets);
-          scene.camera.rays(x + i, y, offsets.data(), int(offsets.size()), w, h, rays.data() + n);
-          n += offsets.size();
+          scene.camera.rays(x + i, y, offsets.data(), int(offsets.size()), w, h, rays.data() + first[i]);
+          first[i + 1] = first[i] + offsets.size();
         }
-        stats.primaryRays += uint64_t(n);
-        tracer.tracePacket(rays.data(), int(n), scene.cameraInteriors, colors.data());
-        const size_t each = n / size_t(group);
-        for (int i = 0; i < group; ++i) image.set(x + i, y, pixelColor(colors.data() + size_t(i) * each, each));
+        stats.primaryRays += uint64_t(first[group]);
+        tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
+        for (int i = 0; i < group; ++i)
+          image.set(x + i, y, pixelColor(colors.data() + first[i], first[i + 1] - first[i]));
         x += group - 1;
         continue;
       }
