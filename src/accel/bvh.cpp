@@ -517,26 +517,46 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, doubl
   return transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 
-std::optional<ClosestHit> Bvh::closestToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax,
-                                              double reach, uint64_t& tests) const {
+bool Bvh::shadowCandidates(const LightBuffer& buffer, const Ray& ray, double length, double reach, double drift,
+                           std::vector<uint32_t>& out) const {
+  out.clear();
   std::span<const LightBuffer::Entry> cell;
-  if (!buffer.cell(-ray.dir, cell)) return closest(ray, tMin, tMax, tests, /*skipNoShadow=*/true);
+  if (!buffer.cell(-ray.dir, cell)) return false;
+  for (const LightBuffer::Entry& e : cell) {
+    if (e.near > reach) break;
+    const LeafItem& it = items_[e.primitive];
+    if (it.noShadow) continue;
+    if (it.kind == LeafItem::Kind::Sphere) {
+      // The sphere test's squared half chord, r^2 - |perp|^2, for this line. A segment
+      // starting within `drift` of it changes |perp|^2 by at most 2 x drift + drift^2, and
+      // rounding by some 1e-15 (x^2 + r^2): a chord this far below zero stays a miss.
+      const Vec3 oc = it.sphere.center - ray.origin;
+      const Vec3 perp = oc - ray.dir * dot(oc, ray.dir);
+      const double r2 = it.sphere.radius * it.sphere.radius;
+      const double x = pvrt::length(oc) + length;
+      if (r2 - dot(perp, perp) < -(1e-9 * (x * x + r2) + 4 * x * drift)) continue;
+    }
+    out.push_back(e.primitive);
+  }
+  for (uint32_t i : buffer.everywhere())
+    if (!items_[i].noShadow) out.push_back(i);
+  return true;
+}
+
+std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates, const Ray& ray, double tMin,
+                                            double tMax, uint64_t& tests) const {
   std::optional<ClosestHit> best;
   double bestT = tMax;
   auto test = [&](uint32_t i) {
-    if (items_[i].noShadow) return;
     ++tests;
     if (auto h = intersectItem(i, ray, tMin, bestT)) {
       bestT = h->t;
       best = ClosestHit{*h, i};
     }
   };
-  for (const LightBuffer::Entry& e : cell) {
-    if (e.near > reach) break;
-    test(e.primitive);
-  }
-  for (uint32_t i : buffer.everywhere()) test(i);
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) test(i);
+  for (uint32_t i : candidates) test(i);
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+    if (!items_[i].noShadow) test(i);
   return best;
 }
 

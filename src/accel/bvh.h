@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "accel/light_buffer.h"
@@ -107,11 +108,20 @@ class Bvh {
   // radians of the light's ray along -ray.dir, and no farther than `reach` from the light.
   Occlusion occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
                              uint64_t& tests, uint32_t& blocker) const;
-  // closest(..., skipNoShadow = true) for a segment that ends at `buffer`'s light, found
-  // among the primitives of the buffer's cell: the same conditions as occlusionToLight.
-  // Only a hit at exactly the distance of another may be a different one of the two.
-  std::optional<ClosestHit> closestToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax,
-                                           double reach, uint64_t& tests) const;
+  // For a walk of shadow segments along one line toward `buffer`'s light (see-through
+  // surfaces crossed one by one, each segment starting where the last one stopped): the
+  // shadow-casting primitives any of them may meet. Each segment must meet
+  // occlusionToLight's conditions (`reach` included), start within `drift` of `ray`'s line
+  // and be no longer than `length`. They are the cell's listed primitives but the spheres
+  // that the line passes by so far that no such segment could reach them, then the ones
+  // tested everywhere. False when the direction has no cell.
+  bool shadowCandidates(const LightBuffer& buffer, const Ray& ray, double length, double reach, double drift,
+                        std::vector<uint32_t>& out) const;
+  // closest(..., skipNoShadow = true) among `candidates` and the unbounded primitives: for a
+  // segment of the walk above, the same nearest hit (but for a hit at exactly the distance
+  // of another, which may be the other one).
+  std::optional<ClosestHit> closestAmong(std::span<const uint32_t> candidates, const Ray& ray, double tMin,
+                                         double tMax, uint64_t& tests) const;
   // The bounded primitives as light buffers see them, in the order of primitives(): their
   // boxes, and the balls of untransformed spheres.
   std::vector<LightBuffer::Occluder> occluders() const;

@@ -437,20 +437,27 @@ class Tracer {
 
   // The product of the filters of every surface the segment crosses, nearest first, or
   // nothing as soon as one is opaque. Each crossing is found from the one before (POV-Ray
-  // starts each step's ray there). `buffer`, when given, is the light's buffer: a step
-  // whose ray stays close enough to the light's ray for its cell to list everything it
-  // can meet (see bufferServes) is answered from that list instead of a walk of the tree.
+  // starts each step's ray there). `buffer`, when given, is the light's buffer: while the
+  // steps stay close enough to the light's ray for its cell to list everything they can
+  // meet (see bufferServes), they are answered from the few primitives of that list that
+  // the line can reach (Bvh::shadowCandidates, listed at the first such step) instead of
+  // by walks of the tree.
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
                              const LightBuffer* buffer = nullptr) {
     const double tol = scene_.tol.shadow;
+    // Every step that bufferServes lets through starts within this of the light's ray, so
+    // within twice this of the first such step's line.
+    const double drift = LightBuffer::kMargin * tol;
+    bool listed = false;
     Color k(1.0);
     for (;;) {
       const Ray step{origin, dir};
       std::optional<ClosestHit> found;
       const Vec3 fromLight = buffer ? origin - buffer->light() : Vec3{};
-      if (buffer && bufferServes(length(cross(fromLight, dir)))) {
-        found = scene_.bvh.closestToLight(*buffer, step, tol, dist - tol, length(fromLight) * (1 + 1e-9),
-                                          stats_.intersectionTests);
+      if (buffer && bufferServes(length(cross(fromLight, dir))) &&
+          (listed || (listed = scene_.bvh.shadowCandidates(*buffer, step, dist, length(fromLight) * (1 + 1e-9),
+                                                           drift, shadowCandidates_)))) {
+        found = scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests);
       } else {
         found = scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
       }
@@ -542,6 +549,7 @@ class Tracer {
   uint32_t blocker_[kMaxPacket];
   std::vector<PacketLight> known_;  // one per light
   std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
+  std::vector<uint32_t> shadowCandidates_;  // orderedTransmittance: what its steps may meet
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
   std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)

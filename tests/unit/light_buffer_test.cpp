@@ -49,8 +49,26 @@ class Maker : public test::RandomGeometry {
 
 struct Answer {
   Occlusion viaTree, viaBuffer;
-  std::optional<ClosestHit> nearestViaTree, nearestViaBuffer;
+  // The crossings of a walk along the segment, each step starting at the last crossing
+  // (as the tracer walks see-through shadows): by the tree's closest query, and among the
+  // buffer's candidates for the walk.
+  std::vector<ClosestHit> walkViaTree, walkViaBuffer;
 };
+
+// Up to 8 steps of such a walk from `segment` toward a light `dist` away; `nearest` answers
+// a step.
+template <class Nearest>
+std::vector<ClosestHit> walk(Ray segment, double dist, Nearest&& nearest) {
+  std::vector<ClosestHit> crossings;
+  for (int k = 0; k < 8; ++k) {
+    const std::optional<ClosestHit> hit = nearest(segment, dist);
+    if (!hit) break;
+    crossings.push_back(*hit);
+    segment.origin = segment.origin + segment.dir * hit->hit.t;
+    dist -= hit->hit.t;
+  }
+  return crossings;
+}
 
 // The segment from a point on the surface of primitive `i` (a sphere) toward the light,
 // started a hair off the surface, as the tracer starts it; both queries' answers.
@@ -66,16 +84,24 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
   Answer a;
   a.viaTree = bvh.occlusion(segment, kTol, dist - kTol, tests, blocker);
   a.viaBuffer = bvh.occlusionToLight(buffer, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests, blocker);
-  a.nearestViaTree = bvh.closest(segment, kTol, dist - kTol, tests, /*skipNoShadow=*/true);
-  a.nearestViaBuffer = bvh.closestToLight(buffer, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests);
+  a.walkViaTree = walk(segment, dist, [&](const Ray& step, double left) {
+    return bvh.closest(step, kTol, left - kTol, tests, /*skipNoShadow=*/true);
+  });
+  std::vector<uint32_t> candidates;
+  const double drift = LightBuffer::kMargin * kTol;  // the tracer's bound (Tracer::orderedTransmittance)
+  EXPECT_TRUE(bvh.shadowCandidates(buffer, segment, dist, (dist + shift) * (1 + 1e-9), drift, candidates));
+  a.walkViaBuffer = walk(segment, dist, [&](const Ray& step, double left) {
+    return bvh.closestAmong(candidates, step, kTol, left - kTol, tests);
+  });
   return a;
 }
 
 void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, Maker& gen, int segments,
-                        int* blocked = nullptr) {
+                        int* blocked = nullptr, size_t* crossed = nullptr) {
   const Bvh bvh(prims);
   const LightBuffer buffer(light, bvh.occluders());
   int count = 0;
+  size_t crossings = 0;
   for (int k = 0; k < segments; ++k) {
     const uint32_t i = uint32_t(gen.uniform(0, double(prims.size() - 1)));  // a sphere, not the floor
     const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
@@ -83,14 +109,16 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
     if (length(buffer.light() - onSphere) <= 2 * kTol) continue;
     const Answer a = shadowOf(bvh, buffer, i, onSphere, 1e-12);
     ASSERT_EQ(int(a.viaBuffer), int(a.viaTree)) << "segment " << k << " from sphere " << i;
-    ASSERT_EQ(a.nearestViaBuffer.has_value(), a.nearestViaTree.has_value()) << "segment " << k;
-    if (a.nearestViaTree) {
-      EXPECT_EQ(a.nearestViaBuffer->primitive, a.nearestViaTree->primitive) << "segment " << k;
-      EXPECT_EQ(a.nearestViaBuffer->hit.t, a.nearestViaTree->hit.t) << "segment " << k;
+    ASSERT_EQ(a.walkViaBuffer.size(), a.walkViaTree.size()) << "segment " << k;
+    for (size_t c = 0; c < a.walkViaTree.size(); ++c) {
+      EXPECT_EQ(a.walkViaBuffer[c].primitive, a.walkViaTree[c].primitive) << "segment " << k << " crossing " << c;
+      EXPECT_EQ(a.walkViaBuffer[c].hit.t, a.walkViaTree[c].hit.t) << "segment " << k << " crossing " << c;
     }
+    crossings += a.walkViaTree.size();
     count += a.viaTree == Occlusion::Blocked;
   }
   if (blocked) *blocked = count;
+  if (crossed) *crossed = crossings;
 }
 
 // A dense cloud lit from outside: most segments are blocked, some see-through.
@@ -98,9 +126,11 @@ TEST(LightBuffer, AgreesWithTheTreeForALightOutsideTheScene) {
   Maker gen(3);
   const auto prims = gen.scene(3000, 10, 0.1, 0.6);
   int blocked = 0;
-  expectBufferAgrees(prims, {3, 40, -7}, gen, 20000, &blocked);
+  size_t crossed = 0;
+  expectBufferAgrees(prims, {3, 40, -7}, gen, 20000, &blocked, &crossed);
   EXPECT_GT(blocked, 2000);
   EXPECT_LT(blocked, 19000);
+  EXPECT_GT(crossed, 40000u);  // walks of several steps, as through glass
 }
 
 // A light among the spheres sees them on every face of its cube, and close.
