@@ -49,9 +49,10 @@ struct Scene {
   // Whether the buffers are too big for the caches, so that shading should start fetching
   // a point's cells for all lights at once (it costs more than it saves on small ones).
   bool prefetchLightBuffers = false;
-  // Whether the shadow segments of a packet (the samples of a pixel) are answered one by
-  // one from the light buffers instead of together by one walk of the tree: in a scene of
-  // many primitives the walk goes deep (see kPacketShadowsFromBuffers in scene.cpp).
+  // Whether the shadow segments of a packet (the samples of a pixel or of a few) are
+  // answered one by one from the light buffers instead of together by one walk of the tree:
+  // in a scene of many primitives the walk goes deep (see kPacketShadowsFromBuffers in
+  // scene.cpp).
   bool packetShadowsFromBuffers = false;
   InteriorList cameraInteriors;  // objects whose inside contains the camera
   EffectSet effects = 0;         // kernel effects (supersampling is added per render)

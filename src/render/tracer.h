@@ -52,9 +52,10 @@ class Tracer {
     return shade(ray, found->primitive, found->hit, level + 1, weight, inside);
   }
 
-  // The primary rays of one pixel, all from the camera: their closest hits and the
-  // shadow segments of those hits are found a packet at a time (accel/packet.h); the
-  // shading is then exactly trace()'s, ray by ray. `out[k]` receives ray k's colour.
+  // The primary rays of a pixel or of a few neighbours, all from the camera: their closest
+  // hits and the shadow segments of those hits are found a packet at a time
+  // (accel/packet.h); the shading is then exactly trace()'s, ray by ray. `out[k]` receives
+  // ray k's colour.
   void tracePacket(const Ray* rays, int count, const InteriorList& inside, Color* out) {
     std::optional<ClosestHit>* hits = hits_;
     scene_.bvh.closestPacket(rays, count, scene_.tol.primaryMinDepth, scene_.tol.maxDistance, hits,
