@@ -6,7 +6,8 @@
 # Environment: SPP (samples per pixel, default 4), THREADS (default 2), SEED (default 1),
 # WIDTH and HEIGHT (default 640x400), ROUNDS (default 1): each round renders every scene
 # once, in turn, so that the machine's drift falls on all of them alike; the table gives
-# medians [min-max] of the render stage and each scene's median against the first one's.
+# medians [min-max] of the render stage, each scene's median against the first one's, and
+# the median [min-max] of the round-by-round ratios to the first scene ("paired").
 set -euo pipefail
 pvrt=${1:-build/pvrt}
 shift || true
@@ -26,7 +27,8 @@ for ((r = 0; r < rounds; ++r)); do
   done
 done
 echo "${width}x${height}, --spp $spp, $threads threads, seed $seed, $rounds round(s)"
-printf '%10s %12s %26s %10s %14s %12s\n' spheres "load+build s" "render s: median [min-max]" "vs first" "tests/ray" "Mrays/s"
+printf '%10s %12s %26s %10s %22s %14s %12s\n' spheres "load+build s" "render s: median [min-max]" "vs first" \
+  "paired: median [min-max]" "tests/ray" "Mrays/s"
 first=""
 for n in "${counts[@]}"; do
   row=$(awk -v n="$n" '
@@ -41,6 +43,18 @@ for n in "${counts[@]}"; do
     }' "$work/stats$n.txt")
   read -r startup median lo hi perRay mrays <<<"$row"
   first=${first:-$median}
-  printf '%10d %12.4f %26s %9.2fx %14.2f %12.2f\n' "$n" "$startup" "$median [$lo-$hi]" \
-    "$(awk -v a="$median" -v b="$first" 'BEGIN { print a / b }')" "$perRay" "$mrays"
+  firstStats=${firstStats:-$work/stats$n.txt}
+  # Each round's render against the first scene's in the same round (rendered just before
+  # it, so the machine's drift cancels): the median and range of those ratios.
+  paired=$(awk '
+    FNR == 1 { file++ }
+    /^  Time/ { t[file, ++k[file]] = $9 }
+    END {
+      for (i = 1; i <= k[2]; ++i) r[i] = t[2, i] / t[1, i]
+      for (i = 1; i <= k[2]; ++i)
+        for (j = i; j > 1 && r[j - 1] > r[j]; --j) { x = r[j]; r[j] = r[j - 1]; r[j - 1] = x }
+      printf "%.2fx [%.2f-%.2f]", r[int((k[2] + 1) / 2)], r[1], r[k[2]]
+    }' "$firstStats" "$work/stats$n.txt")
+  printf '%10d %12.4f %26s %9.2fx %22s %14.2f %12.2f\n' "$n" "$startup" "$median [$lo-$hi]" \
+    "$(awk -v a="$median" -v b="$first" 'BEGIN { print a / b }')" "$paired" "$perRay" "$mrays"
 done
