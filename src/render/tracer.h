@@ -453,15 +453,19 @@ class Tracer {
     Color k(1.0);
     for (;;) {
       const Ray step{origin, dir};
-      std::optional<ClosestHit> found;
-      const Vec3 fromLight = buffer ? origin - buffer->light() : Vec3{};
-      if (buffer && bufferServes(length(cross(fromLight, dir))) &&
-          (listed || (listed = scene_.bvh.shadowCandidates(*buffer, step, dist, length(fromLight) * (1 + 1e-9),
-                                                           drift, shadowCandidates_)))) {
-        found = scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests);
-      } else {
-        found = scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+      bool serves = false;
+      if (buffer) {
+        const Vec3 fromLight = origin - buffer->light();
+        serves = bufferServes(length(cross(fromLight, dir)));
+        if (serves && !listed) {
+          listed = scene_.bvh.shadowCandidates(*buffer, step, dist, length(fromLight) * (1 + 1e-9), drift,
+                                               shadowCandidates_);
+          if (!listed) buffer = nullptr, serves = false;  // no cell for this direction: the tree it is
+        }
       }
+      const std::optional<ClosestHit> found =
+          serves ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
+                 : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
         return {};
