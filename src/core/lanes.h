@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #if defined(__SSE2__)
@@ -42,6 +43,12 @@ inline Double4 copySign(Double4 mag, Double4 sign) {
 inline unsigned lessEqual(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ))); }
 inline unsigned less(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ))); }
 inline void store(double* out, Double4 a) { _mm256_storeu_pd(out, a.v); }
+// Lane i of a where bit i of `bits` is set, else of b.
+inline Double4 select(unsigned bits, Double4 a, Double4 b) {
+  const __m256i m = _mm256_setr_epi64x(-int64_t(bits & 1u), -int64_t(bits >> 1 & 1u), -int64_t(bits >> 2 & 1u),
+                                       -int64_t(bits >> 3 & 1u));
+  return {_mm256_blendv_pd(b.v, a.v, _mm256_castsi256_pd(m))};
+}
 
 struct Float8 { __m256 v; };
 inline Float8 splat8(float s) { return {_mm256_set1_ps(s)}; }
@@ -94,6 +101,11 @@ inline unsigned less(Double4 a, Double4 b) {
 inline void store(double* out, Double4 a) {
   _mm_storeu_pd(out, a.lo);
   _mm_storeu_pd(out + 2, a.hi);
+}
+inline Double4 select(unsigned bits, Double4 a, Double4 b) {
+  const __m128d lo = _mm_castsi128_pd(_mm_set_epi64x(-int64_t(bits >> 1 & 1u), -int64_t(bits & 1u)));
+  const __m128d hi = _mm_castsi128_pd(_mm_set_epi64x(-int64_t(bits >> 3 & 1u), -int64_t(bits >> 2 & 1u)));
+  return {_mm_or_pd(_mm_and_pd(lo, a.lo), _mm_andnot_pd(lo, b.lo)), _mm_or_pd(_mm_and_pd(hi, a.hi), _mm_andnot_pd(hi, b.hi))};
 }
 
 struct Float8 { __m128 lo, hi; };
@@ -151,6 +163,9 @@ inline unsigned less(Double4 a, Double4 b) {
   return m;
 }
 inline void store(double* out, Double4 a) { std::memcpy(out, a.v, sizeof a.v); }
+inline Double4 select(unsigned bits, Double4 a, Double4 b) {
+  return each([&](int i) { return (bits >> i & 1u) != 0 ? a.v[i] : b.v[i]; });
+}
 
 struct Float8 { float v[8]; };
 template <class F>

@@ -104,6 +104,10 @@ class Tracer {
       for (size_t j = 0; j < lights; ++j) resolveShadows(hits, count, j);
     }
     for (int k = 0; k < count; ++k) {
+      if (k % 4 == 0 && k + 4 <= count && shadeFour(rays, k, out)) {
+        k += 3;
+        continue;
+      }
       if (!hits[k]) {
         out[k] = scene_.background;
         continue;
@@ -186,6 +190,118 @@ class Tracer {
       }
     }
     return result;
+  }
+
+  // Whether shadeAt would give a hit of this surface no more than its ambient term and its
+  // lights' diffuse and highlight terms: no mirror, no brilliance or metallic tint, and no
+  // spotlight, fading or area light in the scene. (Its pigment must also let nothing through.)
+  bool plainSurface(const Surface& s) const {
+    if constexpr ((E & (kLightShaping | kAreaLights)) != 0) return false;
+    if constexpr ((E & kReflection) != 0) {
+      if (s.reflective) return false;
+    }
+    return s.finish.brilliance == 1 && (!s.highlights || s.finish.metallic == 0);
+  }
+
+  // shadeAt for packet rays k0 .. k0+3 at once, when all four hit plain surfaces (above) of
+  // one Surface and every shadow answer they need is Clear or Blocked; false, with nothing
+  // done, otherwise. Each lane does shadeAt's operations in shadeAt's order (a light that
+  // gives nothing adds zeros, as there), so out[] gets the same bits and the counters the
+  // same counts.
+  bool shadeFour(const Ray* rays, int k0, Color* out) {
+    using namespace lanes;
+    const std::optional<ClosestHit>* hits = hits_ + k0;
+    if (!hits[0] || !hits[1] || !hits[2] || !hits[3]) return false;
+    const Material* m[4];
+    for (int i = 0; i < 4; ++i) m[i] = &scene_.materials[scene_.bvh.material(hits[i]->primitive)];
+    const Surface& s = scene_.materials.surface(*m[0]);
+    for (int i = 1; i < 4; ++i)
+      if (m[i]->surface != m[0]->surface) return false;
+    if (!plainSurface(s)) return false;
+    const size_t lights = scene_.lights.size();
+    if constexpr ((E & kShadows) != 0) {
+      for (size_t j = 0; j < lights; ++j) {
+        if (scene_.lights[j].shadowless) continue;
+        const PacketLight& pl = known_[j];
+        for (int i = 0; i < 4; ++i)
+          if (pl.isLit(k0 + i) && pl.occlusion[k0 + i] == uint8_t(Occlusion::Transparent)) return false;
+      }
+    }
+    const FinishDesc& f = s.finish;
+    FilterColor pig[4];
+    double alpha[4];
+    Color ambient[4];
+    for (int i = 0; i < 4; ++i) {
+      pig[i] = m[i]->color;
+      if constexpr ((E & kTextures) != 0) pig[i] = scene_.materials.pigmentAt(*m[i], points_[k0 + i].p);
+      if constexpr ((E & kTransmission) != 0) {
+        if (!m[i]->opaque && (pig[i].filter != 0 || pig[i].transmit != 0)) return false;
+      }
+      alpha[i] = 1.0 - pig[i].filter - pig[i].transmit;
+      ambient[i] = pig[i].rgb * f.ambient * scene_.globals.ambientLight * alpha[i] + pig[i].rgb * f.emission * alpha[i];
+    }
+    stats_.shadingOps += 4;
+    const Double4 pigR = set(pig[0].rgb.r, pig[1].rgb.r, pig[2].rgb.r, pig[3].rgb.r);
+    const Double4 pigG = set(pig[0].rgb.g, pig[1].rgb.g, pig[2].rgb.g, pig[3].rgb.g);
+    const Double4 pigB = set(pig[0].rgb.b, pig[1].rgb.b, pig[2].rgb.b, pig[3].rgb.b);
+    const Double4 alphaV = set(alpha[0], alpha[1], alpha[2], alpha[3]);
+    Double4 r = set(ambient[0].r, ambient[1].r, ambient[2].r, ambient[3].r);
+    Double4 g = set(ambient[0].g, ambient[1].g, ambient[2].g, ambient[3].g);
+    Double4 b = set(ambient[0].b, ambient[1].b, ambient[2].b, ambient[3].b);
+    const Double4 nx = load(nx_ + k0), ny = load(ny_ + k0), nz = load(nz_ + k0);
+    const Double4 zero = splat(0.0);
+    for (size_t j = 0; j < lights; ++j) {
+      const Light& light = scene_.lights[j];
+      const PacketLight& pl = known_[j];
+      // lightContribution: nothing unless lit (which holds dot(n, l) >= kPovEpsilon).
+      unsigned gives = unsigned(pl.lit >> k0) & 0xFu;
+      const Color& intensity = light.color;
+      if constexpr ((E & kShadows) != 0) {
+        if (!light.shadowless && gives != 0) {
+          stats_.shadowRays += uint64_t(__builtin_popcount(gives));
+          for (int i = 0; i < 4; ++i)
+            if (pl.occlusion[k0 + i] == uint8_t(Occlusion::Blocked)) gives &= ~(1u << i);
+          // A clear segment leaves the intensity as it is (times 1): nothing when that is dark.
+          if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) gives = 0;
+        }
+      }
+      Double4 cr = zero, cg = zero, cb = zero;
+      if (gives != 0) {
+        const Double4 dx = load(pl.dirX + k0), dy = load(pl.dirY + k0), dz = load(pl.dirZ + k0);
+        if (f.diffuse > 0) {
+          const Double4 nl = nx * dx + ny * dy + nz * dz;
+          const Double4 k = splat(f.diffuse) * nl * alphaV;
+          cr = pigR * splat(intensity.r) * k;
+          cg = pigG * splat(intensity.g) * k;
+          cb = pigB * splat(intensity.b) * k;
+        }
+        if constexpr ((E & kHighlights) != 0) {
+          if (s.highlights && !light.shadowless) {
+            double h[4] = {0, 0, 0, 0};
+            for (int i = 0; i < 4; ++i) {
+              if (!(gives >> i & 1u)) continue;
+              const int k = k0 + i;
+              const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
+              if (f.phong > 0) h[i] += shading::phong(f, rays[k].dir, normals_[k], l);
+              if (f.specular > 0) h[i] += shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l);
+            }
+            const Double4 hv = load(h);
+            const unsigned lit = less(zero, hv);  // h > 0
+            cr = select(lit, cr + splat(intensity.r) * hv, cr);
+            cg = select(lit, cg + splat(intensity.g) * hv, cg);
+            cb = select(lit, cb + splat(intensity.b) * hv, cb);
+          }
+        }
+        cr = select(gives, cr, zero);
+        cg = select(gives, cg, zero);
+        cb = select(gives, cb, zero);
+      }
+      r = r + cr, g = g + cg, b = b + cb;
+    }
+    double rs[4], gs[4], bs[4];
+    store(rs, r), store(gs, g), store(bs, b);
+    for (int i = 0; i < 4; ++i) out[k0 + i] = {rs[i], gs[i], bs[i]};
+    return true;
   }
 
   // Starts fetching the light-buffer cells that the shadow segments from p will read, all
