@@ -84,12 +84,21 @@ class Bvh {
   }
   SurfacePoint surfacePoint(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
     const LeafItem& it = items_[i];
-    return it.kind == LeafItem::Kind::Sphere ? sphereSurfacePoint(it.sphere, ray.at(hit.t))
-                                              : prims_[i].surfacePoint(ray, hit);
+    switch (it.kind) {
+      case LeafItem::Kind::Sphere: return sphereSurfacePoint(it.sphere, ray.at(hit.t));
+      case LeafItem::Kind::Plane: return planeSurfacePoint(it.plane, ray.at(hit.t));
+      case LeafItem::Kind::Other: break;
+    }
+    return prims_[i].surfacePoint(ray, hit);
   }
   Vec3 normal(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
     const LeafItem& it = items_[i];
-    return it.kind == LeafItem::Kind::Sphere ? sphereNormal(it.sphere, ray.at(hit.t)) : prims_[i].normal(ray, hit);
+    switch (it.kind) {
+      case LeafItem::Kind::Sphere: return sphereNormal(it.sphere, ray.at(hit.t));
+      case LeafItem::Kind::Plane: return it.plane.normal;
+      case LeafItem::Kind::Other: break;
+    }
+    return prims_[i].normal(ray, hit);
   }
 
   // Nearest hit in (tMin, tMax). `tests` is increased by the number of primitive

@@ -200,7 +200,7 @@ struct Reproject {
   const Vec3& p;
   const ShapeHit& hit;
   SurfacePoint operator()(const SphereShape& s) const { return sphereSurfacePoint(s, p); }
-  SurfacePoint operator()(const PlaneShape& s) const { return flat(s.normal, s.normal * s.distance); }
+  SurfacePoint operator()(const PlaneShape& s) const { return planeSurfacePoint(s, p); }
   SurfacePoint operator()(const BoxShape& b) const {
     // The face's own coordinate is exact; the other two are where the ray put them.
     const int axis = hit.part / 2;

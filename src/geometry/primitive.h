@@ -131,6 +131,12 @@ inline SurfacePoint sphereSurfacePoint(const SphereShape& s, const Vec3& p) {
   const Vec3 q = s.center + v * (s.radius / len);
   return {q, (vabs(q - s.center) + vabs(q)) * errorGamma(6)};
 }
+// The hit point p of an untransformed plane moved onto it, with the bound on its error.
+inline SurfacePoint planeSurfacePoint(const PlaneShape& s, const Vec3& p) {
+  const Vec3 at = s.normal * s.distance;
+  const Vec3 q = p - s.normal * dot(s.normal, p - at);
+  return {q, (vabs(q) + vabs(at)) * errorGamma(8)};
+}
 // (P - C) / r, unit but for rounding, as POV-Ray leaves it.
 inline Vec3 sphereNormal(const SphereShape& s, const Vec3& p) { return (p - s.center) / s.radius; }
 

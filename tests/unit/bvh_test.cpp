@@ -149,9 +149,14 @@ TEST(Bvh, ClosestMatchesBruteForceOnMixedShapesAndAPlane) {
 // where it can be) is exactly what the Primitive itself answers, bit for bit.
 TEST(Bvh, ShadingQueriesMatchThePrimitives) {
   SceneMaker gen(0x5eed'0010);
-  const Bvh bvh(gen.mixed(700));
+  auto prims = gen.mixed(700);
+  // Planes, which the leaf records answer for too, some of them tilted.
+  prims.push_back(make(PlaneShape{normalize(Vec3{0.3, 1, 0.2}), -15}, 901));
+  prims.push_back(make(PlaneShape{{0, 0, 1}, 40}, 902));
+  prims.push_back(make(PlaneShape{normalize(Vec3{-1, 0.1, 0.4}), 30}, 903));
+  const Bvh bvh(std::move(prims));
   const auto same = [](const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof(Vec3)) == 0; };
-  int hits = 0;
+  int hits = 0, planeHits = 0;
   for (int k = 0; k < 4000; ++k) {
     const Ray r = gen.ray(12);
     uint64_t tests = 0;
@@ -160,6 +165,7 @@ TEST(Bvh, ShadingQueriesMatchThePrimitives) {
     ++hits;
     const uint32_t i = found->primitive;
     const Primitive& p = bvh.primitives()[i];
+    planeHits += std::holds_alternative<PlaneShape>(p.shape);
     EXPECT_EQ(bvh.material(i), p.material);
     EXPECT_EQ(bvh.object(i), p.object);
     const SurfacePoint a = bvh.surfacePoint(i, r, found->hit), b = p.surfacePoint(r, found->hit);
@@ -170,6 +176,7 @@ TEST(Bvh, ShadingQueriesMatchThePrimitives) {
     EXPECT_EQ(again->t, direct->t);
   }
   EXPECT_GT(hits, 1000);
+  EXPECT_GT(planeHits, 100);
 }
 
 // Planes have no bounds: they live outside the tree and are tested on every ray. A ray
