@@ -78,6 +78,14 @@ class Bvh {
   // leaf records where they have it, so that a hit on one of a million spheres does not
   // also fetch its ~200-byte Primitive: the same answers as the Primitive's.
   uint32_t material(uint32_t i) const { return items_[i].material; }
+  // Primitive i's shape when it is an untransformed sphere or plane (the shapes whose
+  // shading queries the leaf records answer), else null.
+  const SphereShape* sphere(uint32_t i) const {
+    return items_[i].kind == LeafItem::Kind::Sphere ? &items_[i].sphere : nullptr;
+  }
+  const PlaneShape* plane(uint32_t i) const {
+    return items_[i].kind == LeafItem::Kind::Plane ? &items_[i].plane : nullptr;
+  }
   uint32_t object(uint32_t i) const { return items_[i].object; }
   std::optional<ShapeHit> intersect(uint32_t i, const Ray& ray, double tMin, double tMax) const {
     return intersectItem(i, ray, tMin, tMax);

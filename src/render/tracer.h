@@ -66,6 +66,10 @@ class Tracer {
     // lanes past `count`, whose answers are never read).
     const int padded = (count + 3) & ~3;
     for (int k = 0; k < padded; ++k) {
+      if (k % 4 == 0 && k + 4 <= count && setUpFour(rays, k)) {
+        k += 3;
+        continue;
+      }
       if (k >= count || !hits[k]) {
         px_[k] = py_[k] = pz_[k] = nx_[k] = ny_[k] = nz_[k] = pointError_[k] = 0;
         continue;
@@ -190,6 +194,90 @@ class Tracer {
       }
     }
     return result;
+  }
+
+  // tracePacket's per-hit set-up (hit point, normal, shadow origin) for packet rays k0 ..
+  // k0+3 at once, when all four hit untransformed spheres or all four planes; false, with
+  // nothing done, otherwise. Each lane does the operations of sphereSurfacePoint or
+  // planeSurfacePoint, the normal, its flip and offsetRayOrigin in their order: the same bits.
+  bool setUpFour(const Ray* rays, int k0) {
+    using namespace lanes;
+    const std::optional<ClosestHit>* hits = hits_ + k0;
+    if (!hits[0] || !hits[1] || !hits[2] || !hits[3]) return false;
+    const Bvh& bvh = scene_.bvh;
+    const SphereShape* sphere[4];
+    const PlaneShape* plane[4];
+    for (int i = 0; i < 4; ++i) {
+      sphere[i] = bvh.sphere(hits[i]->primitive);
+      plane[i] = sphere[i] ? nullptr : bvh.plane(hits[i]->primitive);
+    }
+    const bool spheres = sphere[0] && sphere[1] && sphere[2] && sphere[3];
+    if (!spheres && !(plane[0] && plane[1] && plane[2] && plane[3])) return false;
+    auto gather = [](auto&& f) { return set(f(0), f(1), f(2), f(3)); };
+    const Double4 t = gather([&](int i) { return hits[i]->hit.t; });
+    const Double4 dx = gather([&](int i) { return rays[k0 + i].dir.x; });
+    const Double4 dy = gather([&](int i) { return rays[k0 + i].dir.y; });
+    const Double4 dz = gather([&](int i) { return rays[k0 + i].dir.z; });
+    // Ray::at: origin + dir * t.
+    const Double4 px = gather([&](int i) { return rays[k0 + i].origin.x; }) + dx * t;
+    const Double4 py = gather([&](int i) { return rays[k0 + i].origin.y; }) + dy * t;
+    const Double4 pz = gather([&](int i) { return rays[k0 + i].origin.z; }) + dz * t;
+    Double4 qx, qy, qz, ex, ey, ez, nx, ny, nz;
+    if (spheres) {
+      const Double4 cx = gather([&](int i) { return sphere[i]->center.x; });
+      const Double4 cy = gather([&](int i) { return sphere[i]->center.y; });
+      const Double4 cz = gather([&](int i) { return sphere[i]->center.z; });
+      const Double4 r = gather([&](int i) { return sphere[i]->radius; });
+      const Double4 vx = px - cx, vy = py - cy, vz = pz - cz;
+      const Double4 len = lanes::sqrt(vx * vx + vy * vy + vz * vz);
+      if (less(splat(0.0), len) != 0xFu) return false;  // a point at a centre: the scalar code's case
+      const Double4 scale = r / len;
+      qx = cx + vx * scale, qy = cy + vy * scale, qz = cz + vz * scale;
+      const Double4 g6 = splat(errorGamma(6));
+      ex = (abs(qx - cx) + abs(qx)) * g6, ey = (abs(qy - cy) + abs(qy)) * g6, ez = (abs(qz - cz) + abs(qz)) * g6;
+      nx = vx / r, ny = vy / r, nz = vz / r;
+    } else {
+      nx = gather([&](int i) { return plane[i]->normal.x; });
+      ny = gather([&](int i) { return plane[i]->normal.y; });
+      nz = gather([&](int i) { return plane[i]->normal.z; });
+      const Double4 d = gather([&](int i) { return plane[i]->distance; });
+      const Double4 ax = nx * d, ay = ny * d, az = nz * d;
+      const Double4 along = nx * (px - ax) + ny * (py - ay) + nz * (pz - az);
+      qx = px - nx * along, qy = py - ny * along, qz = pz - nz * along;
+      const Double4 g8 = splat(errorGamma(8));
+      ex = (abs(qx) + abs(ax)) * g8, ey = (abs(qy) + abs(ay)) * g8, ez = (abs(qz) + abs(az)) * g8;
+    }
+    // Every surface is shaded on the side the ray sees.
+    const unsigned away = less(splat(0.0), nx * dx + ny * dy + nz * dz);
+    const Double4 flip = splat(-1.0);  // -x exactly, zeros included
+    nx = select(away, nx * flip, nx), ny = select(away, ny * flip, ny), nz = select(away, nz * flip, nz);
+    double qs[3][4], es[3][4], ns[3][4], error[4];
+    store(qs[0], qx), store(qs[1], qy), store(qs[2], qz);
+    store(es[0], ex), store(es[1], ey), store(es[2], ez);
+    store(ns[0], nx), store(ns[1], ny), store(ns[2], nz);
+    store(error, lanes::sqrt(ex * ex + ey * ey + ez * ez));
+    if constexpr ((E & kShadows) != 0) {
+      const Double4 shift = abs(nx) * ex + abs(ny) * ey + abs(nz) * ez;
+      double off[3][4], o[3][4];
+      store(off[0], nx * shift), store(off[1], ny * shift), store(off[2], nz * shift);
+      store(o[0], qx + nx * shift), store(o[1], qy + ny * shift), store(o[2], qz + nz * shift);
+      for (int i = 0; i < 4; ++i) {
+        Vec3& origin = shadowOrigin_[k0 + i];
+        for (int a = 0; a < 3; ++a) {
+          const double v = o[a][i];
+          origin[a] = off[a][i] > 0 ? nextUp(v) : off[a][i] < 0 ? nextDown(v) : v;
+        }
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      const int k = k0 + i;
+      points_[k] = {{qs[0][i], qs[1][i], qs[2][i]}, {es[0][i], es[1][i], es[2][i]}};
+      normals_[k] = {ns[0][i], ns[1][i], ns[2][i]};
+      px_[k] = qs[0][i], py_[k] = qs[1][i], pz_[k] = qs[2][i];
+      nx_[k] = ns[0][i], ny_[k] = ns[1][i], nz_[k] = ns[2][i];
+      pointError_[k] = error[i];
+    }
+    return true;
   }
 
   // Whether shadeAt would give a hit of this surface no more than its ambient term and its

@@ -13,8 +13,9 @@ namespace pvrt {
 namespace {
 
 // Plain surfaces of several finishes (diffuse only, phong, specular, both, no diffuse),
-// a checker, a mirror, glass, a light that casts no shadows and one too dark to count:
-// every branch of the four-lane shading and of its fallbacks.
+// a checker, a mirror, glass, a light that casts no shadows and one too dark to count,
+// planes seen from above, from below (a ceiling above the lights) and tilted: every branch
+// of the four-lane set-up and shading and of their fallbacks.
 const char* kScene = R"(<scene>
   <camera location="0 3 -8" look_at="0 1 0" right="1.6 0 0"/>
   <light_source location="-5 8 -5" color="0.7 0.7 0.7"/>
@@ -24,6 +25,8 @@ const char* kScene = R"(<scene>
   <plane normal="0 1 0" distance="0">
     <pigment><checker color1="0.9 0.9 0.9" color2="0.2 0.3 0.6"/></pigment>
   </plane>
+  <plane normal="0 1 0" distance="12"><pigment color="0.5 0.5 0.6"/><finish phong="0.4"/></plane>
+  <plane normal="0.3 0.2 -0.93" distance="-5.2"><pigment color="0.6 0.5 0.4"/></plane>
   <sphere center="-2 1 0" radius="1"><pigment color="0.8 0.2 0.1"/><finish phong="0.8" phong_size="60"/></sphere>
   <sphere center="0 0.7 -1" radius="0.7"><pigment color="0.2 0.8 0.1"/><finish specular="0.6" roughness="0.02"/></sphere>
   <sphere center="2 1 0.5" radius="1"><pigment color="0.3 0.3 0.9"/><finish phong="0.5" specular="0.3" diffuse="0"/></sphere>
@@ -50,10 +53,10 @@ TEST(Tracer, PacketShadingGivesEveryRayTheColourOfItsOwnTrace) {
   std::vector<Ray> rays(kMaxPacket);
   std::vector<Color> colours(kMaxPacket);
   long rays4 = 0;
-  for (int round = 0; round < 400; ++round) {
+  for (int round = 0; round < 600; ++round) {
     // Packets of every size, their rays in a cone about a random direction toward the scene.
     const int count = 1 + round % kMaxPacket;
-    const Vec3 axis = normalize(Vec3{spread(rng) * 3, -0.35 + spread(rng), 1});
+    const Vec3 axis = normalize(Vec3{spread(rng) * 3, -0.35 + 3 * spread(rng), 1});
     const double width = round % 3 == 0 ? 0.002 : 0.05;
     for (int k = 0; k < count; ++k)
       rays[k] = Ray{origin, normalize(axis + Vec3{spread(rng) * width, spread(rng) * width, spread(rng) * width})};
