@@ -43,6 +43,8 @@ inline Double4 copySign(Double4 mag, Double4 sign) {
 inline unsigned lessEqual(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LE_OQ))); }
 inline unsigned less(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ))); }
 inline void store(double* out, Double4 a) { _mm256_storeu_pd(out, a.v); }
+inline Double4 floor(Double4 a) { return {_mm256_floor_pd(a.v)}; }
+inline unsigned equal(Double4 a, Double4 b) { return unsigned(_mm256_movemask_pd(_mm256_cmp_pd(a.v, b.v, _CMP_EQ_OQ))); }
 // Lane i of a where bit i of `bits` is set, else of b.
 inline Double4 select(unsigned bits, Double4 a, Double4 b) {
   const __m256i m = _mm256_setr_epi64x(-int64_t(bits & 1u), -int64_t(bits >> 1 & 1u), -int64_t(bits >> 2 & 1u),
@@ -101,6 +103,14 @@ inline unsigned less(Double4 a, Double4 b) {
 inline void store(double* out, Double4 a) {
   _mm_storeu_pd(out, a.lo);
   _mm_storeu_pd(out + 2, a.hi);
+}
+inline Double4 floor(Double4 a) {  // SSE2 has no rounding instruction
+  double v[4];
+  store(v, a);
+  return set(std::floor(v[0]), std::floor(v[1]), std::floor(v[2]), std::floor(v[3]));
+}
+inline unsigned equal(Double4 a, Double4 b) {
+  return unsigned(_mm_movemask_pd(_mm_cmpeq_pd(a.lo, b.lo))) | unsigned(_mm_movemask_pd(_mm_cmpeq_pd(a.hi, b.hi))) << 2;
 }
 inline Double4 select(unsigned bits, Double4 a, Double4 b) {
   const __m128d lo = _mm_castsi128_pd(_mm_set_epi64x(-int64_t(bits >> 1 & 1u), -int64_t(bits & 1u)));
@@ -163,6 +173,12 @@ inline unsigned less(Double4 a, Double4 b) {
   return m;
 }
 inline void store(double* out, Double4 a) { std::memcpy(out, a.v, sizeof a.v); }
+inline Double4 floor(Double4 a) { return each([&](int i) { return std::floor(a.v[i]); }); }
+inline unsigned equal(Double4 a, Double4 b) {
+  unsigned m = 0;
+  for (int i = 0; i < 4; ++i) m |= (a.v[i] == b.v[i] ? 1u : 0u) << i;
+  return m;
+}
 inline Double4 select(unsigned bits, Double4 a, Double4 b) {
   return each([&](int i) { return (bits >> i & 1u) != 0 ? a.v[i] : b.v[i]; });
 }

@@ -53,6 +53,7 @@ class MaterialTable {
   const Surface& surface(const Material& m) const { return surfaces_[m.surface]; }
   const std::vector<Surface>& surfaces() const { return surfaces_; }
   bool anyChecker() const { return !checkers_.empty(); }
+  const Checker& checker(const Material& m) const { return checkers_[size_t(m.checker)]; }
 
   // The pigment's colour at a world point.
   FilterColor pigmentAt(const Material& m, const Vec3& worldPoint) const {

@@ -280,6 +280,23 @@ class Tracer {
     return true;
   }
 
+  // MaterialTable::checkerAt for packet hits k0 .. k0+3 at once, when all four materials are
+  // one checker in world space: bit i of `second` is set where lane i gets the checker's
+  // second colour. False, leaving pigments to pigmentAt, otherwise.
+  bool fourChecker(const Material* const* m, int k0, unsigned& second) const {
+    if constexpr ((E & kTextures) == 0) return false;
+    using namespace lanes;
+    for (int i = 0; i < 4; ++i)
+      if (m[i]->checker < 0 || m[i]->checker != m[0]->checker) return false;
+    if (scene_.materials.checker(*m[0]).worldToPattern) return false;
+    const Double4 eps = splat(kPovEpsilon);
+    const Double4 k = lanes::floor(load(px_ + k0) + eps) + lanes::floor(load(py_ + k0) + eps) +
+                      lanes::floor(load(pz_ + k0) + eps);
+    const Double4 half = abs(k) * splat(0.5);
+    second = ~(equal(half, lanes::floor(half)) & less(half, splat(INFINITY))) & 0xFu;
+    return true;
+  }
+
   // Whether shadeAt would give a hit of this surface no more than its ambient term and its
   // lights' diffuse and highlight terms: no mirror, no brilliance or metallic tint, and no
   // spotlight, fading or area light in the scene. (Its pigment must also let nothing through.)
@@ -319,9 +336,17 @@ class Tracer {
     FilterColor pig[4];
     double alpha[4];
     Color ambient[4];
+    unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
+    const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
       pig[i] = m[i]->color;
-      if constexpr ((E & kTextures) != 0) pig[i] = scene_.materials.pigmentAt(*m[i], points_[k0 + i].p);
+      if constexpr ((E & kTextures) != 0) {
+        if (checkered) {
+          if (secondColour >> i & 1u) pig[i] = scene_.materials.checker(*m[i]).color2;
+        } else {
+          pig[i] = scene_.materials.pigmentAt(*m[i], points_[k0 + i].p);
+        }
+      }
       if constexpr ((E & kTransmission) != 0) {
         if (!m[i]->opaque && (pig[i].filter != 0 || pig[i].transmit != 0)) return false;
       }
