@@ -54,8 +54,8 @@ class Tracer {
 
   // The primary rays of a pixel or of a few neighbours, all from the camera: their closest
   // hits and the shadow segments of those hits are found a packet at a time
-  // (accel/packet.h); the shading is then exactly trace()'s, ray by ray. `out[k]` receives
-  // ray k's colour.
+  // (accel/packet.h); the shading is then exactly trace()'s, four rays at a time where
+  // setUpFour and shadeFour allow it, else ray by ray. `out[k]` receives ray k's colour.
   void tracePacket(const Ray* rays, int count, const InteriorList& inside, Color* out) {
     std::optional<ClosestHit>* hits = hits_;
     scene_.bvh.closestPacket(rays, count, scene_.tol.primaryMinDepth, scene_.tol.maxDistance, hits,
