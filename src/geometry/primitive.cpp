@@ -212,15 +212,10 @@ struct Reproject {
   }
   SurfacePoint operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
   SurfacePoint operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
-  SurfacePoint operator()(const DiscShape& d) const { return flat(d.normal, d.center); }
+  SurfacePoint operator()(const DiscShape& d) const { return flatSurfacePoint(d.normal, d.center, p); }
   SurfacePoint operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   SurfacePoint operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
 
-  // The plane through `at` with unit normal n.
-  SurfacePoint flat(const Vec3& n, const Vec3& at) const {
-    const Vec3 q = p - n * dot(n, p - at);
-    return {q, (vabs(q) + vabs(at)) * errorGamma(8)};
-  }
   // The barycentric combination of the corners (hit.u weights p2, hit.v weights p3).
   SurfacePoint tri(const Vec3& p1, const Vec3& p2, const Vec3& p3) const {
     const double b0 = 1 - hit.u - hit.v;

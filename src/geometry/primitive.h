@@ -131,11 +131,15 @@ inline SurfacePoint sphereSurfacePoint(const SphereShape& s, const Vec3& p) {
   const Vec3 q = s.center + v * (s.radius / len);
   return {q, (vabs(q - s.center) + vabs(q)) * errorGamma(6)};
 }
-// The hit point p of an untransformed plane moved onto it, with the bound on its error.
-inline SurfacePoint planeSurfacePoint(const PlaneShape& s, const Vec3& p) {
-  const Vec3 at = s.normal * s.distance;
-  const Vec3 q = p - s.normal * dot(s.normal, p - at);
+// A hit point p moved onto the plane through `at` with unit normal n, with the bound on
+// its error (planes and discs).
+inline SurfacePoint flatSurfacePoint(const Vec3& n, const Vec3& at, const Vec3& p) {
+  const Vec3 q = p - n * dot(n, p - at);
   return {q, (vabs(q) + vabs(at)) * errorGamma(8)};
+}
+// The hit point p of an untransformed plane moved onto it.
+inline SurfacePoint planeSurfacePoint(const PlaneShape& s, const Vec3& p) {
+  return flatSurfacePoint(s.normal, s.normal * s.distance, p);
 }
 // (P - C) / r, unit but for rounding, as POV-Ray leaves it.
 inline Vec3 sphereNormal(const SphereShape& s, const Vec3& p) { return (p - s.center) / s.radius; }
