@@ -737,16 +737,17 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
   lanes.set(segments, count);
   alignas(32) double hi[kMaxPacket];
   for (int k = 0; k < lanes.groups * 4; ++k) hi[k] = k < count ? tMax[k] : -INFINITY;
-  occlusionPacket(apex, lanes, hi, tMin, out, blocker, tests);
+  static_assert(kMaxPacket <= 64, "one bit per segment");
+  occlusionPacket(apex, lanes, hi, tMin, count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1, out, blocker,
+                  tests);
 }
 
 void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
-                          Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  static_assert(kMaxPacket <= 64, "one bit per segment in `live`");
+                          uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  // From here on `live` holds the segments not yet blocked.
   const int count = lanes.count;
-  // The segments not yet blocked, a bit each.
-  uint64_t live = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
   for (int k = 0; k < count; ++k) out[k] = Occlusion::Clear;
+  if (live == 0) return;
   LazySlabs slabs(lanes);
   // The cone runs from the light back to each segment's start: s in [0, 1].
   Vec3 lo, hi;

@@ -153,9 +153,11 @@ class Bvh {
   void occlusionPacket(const Vec3& apex, const Ray* segments, const double* tMax, int count, double tMin,
                        Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
   // The same for segments given a component per array; tMax has a lane for each of
-  // segments.groups * 4, and -infinity in the padding ones.
-  void occlusionPacket(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin, Occlusion* out,
-                       uint32_t* blocker, uint64_t& tests) const;
+  // segments.groups * 4, and -infinity in the padding ones. Only the segments with a bit
+  // in `live` are tested (the others come out Clear); the others' origins must be NaN,
+  // as the padding's are, so that the packet's bounds leave them out.
+  void occlusionPacket(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
+                       uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
 
  private:
   template <class Enters, class Leaf>

@@ -72,6 +72,7 @@ class Tracer {
       }
       if (k >= count || !hits[k]) {
         px_[k] = py_[k] = pz_[k] = nx_[k] = ny_[k] = nz_[k] = pointError_[k] = 0;
+        shadowX_[k] = shadowY_[k] = shadowZ_[k] = 0;
         continue;
       }
       // Exactly what shade() and lightContribution() compute for this hit, done once.
@@ -82,7 +83,7 @@ class Tracer {
       // Every segment toward a light that lightContribution traces leaves on the side the
       // normal points to (it asks dot(n, l) >= kPovEpsilon first), so all of this hit's
       // segments start here.
-      if constexpr ((E & kShadows) != 0) shadowOrigin_[k] = offsetRayOrigin(points_[k], normals_[k], normals_[k]);
+      if constexpr ((E & kShadows) != 0) setShadowOrigin(k, offsetRayOrigin(points_[k], normals_[k], normals_[k]));
       px_[k] = points_[k].p.x, py_[k] = points_[k].p.y, pz_[k] = points_[k].p.z;
       nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
       pointError_[k] = length(points_[k].error);
@@ -105,7 +106,7 @@ class Tracer {
       }
     }
     if constexpr ((E & kShadows) != 0) {
-      for (size_t j = 0; j < lights; ++j) resolveShadows(hits, count, j);
+      for (size_t j = 0; j < lights; ++j) resolveShadows(count, j);
     }
     for (int k = 0; k < count; ++k) {
       if (k % 4 == 0 && k + 4 <= count && shadeFour(rays, k, out)) {
@@ -261,11 +262,11 @@ class Tracer {
       double off[3][4], o[3][4];
       store(off[0], nx * shift), store(off[1], ny * shift), store(off[2], nz * shift);
       store(o[0], qx + nx * shift), store(o[1], qy + ny * shift), store(o[2], qz + nz * shift);
+      double* origin[3] = {shadowX_ + k0, shadowY_ + k0, shadowZ_ + k0};
       for (int i = 0; i < 4; ++i) {
-        Vec3& origin = shadowOrigin_[k0 + i];
         for (int a = 0; a < 3; ++a) {
           const double v = o[a][i];
-          origin[a] = off[a][i] > 0 ? nextUp(v) : off[a][i] < 0 ? nextDown(v) : v;
+          origin[a][i] = off[a][i] > 0 ? nextUp(v) : off[a][i] < 0 ? nextDown(v) : v;
         }
       }
     }
@@ -514,7 +515,7 @@ class Tracer {
 
   // The shadow segments toward light j of the packet's hits, those that lightContribution
   // will ask for, answered before any is shaded; the results land in known_.
-  void resolveShadows(const std::optional<ClosestHit>* hits, int count, size_t j) {
+  void resolveShadows(int count, size_t j) {
     const Light& light = scene_.lights[j];
     if (light.shadowless) return;
     PacketLight& pl = known_[j];
@@ -527,31 +528,45 @@ class Tracer {
     const double tol = scene_.tol.shadow;
     // In a big scene each segment is answered from the light's buffer (as shadowFactor would
     // answer it), in a small one all of them by one walk of the tree (Scene::packetShadowsFromBuffers).
-    const LightBuffer* buffer = scene_.packetShadowsFromBuffers ? bufferOf(j) : nullptr;
-    int m = 0;
-    for (int k = 0; k < count; ++k) {
-      if (!hits[k] || !pl.isLit(k)) continue;  // lightContribution stops before its shadow ray
-      if (buffer) {
-        const double shift = length(shadowOrigin_[k] - points_[k].p);
-        if (bufferServes(shift)) {
-          uint32_t blocker = 0;
-          pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
-              *buffer, Ray{shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
-              bufferReach(pl.dist[k], shift), stats_.intersectionTests, blocker));
-          continue;
-        }
+    // Only the lit rays have a segment: lightContribution stops before the shadow ray of the
+    // others (misses, and the lanes past `count`, are never lit).
+    uint64_t live = pl.lit;
+    if (const LightBuffer* buffer = scene_.packetShadowsFromBuffers ? bufferOf(j) : nullptr) {
+      for (uint64_t b = live; b != 0; b &= b - 1) {
+        const int k = __builtin_ctzll(b);
+        const Vec3 origin = shadowOrigin(k);
+        const double shift = length(origin - points_[k].p);
+        if (!bufferServes(shift)) continue;
+        uint32_t blocker = 0;
+        pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
+            *buffer, Ray{origin, {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
+            bufferReach(pl.dist[k], shift), stats_.intersectionTests, blocker));
+        live &= ~(uint64_t(1) << k);
       }
-      // The segment segmentTransmittance() would trace.
-      segments_.set(m, shadowOrigin_[k], {pl.dirX[k], pl.dirY[k], pl.dirZ[k]});
-      segmentEnd_[m] = pl.dist[k] - tol;
-      segmentRay_[m++] = k;
     }
-    if (m == 0) return;
-    segments_.finish(m);
-    for (int i = m; i < segments_.groups * 4; ++i) segmentEnd_[i] = -INFINITY;
-    scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, occlusion_, blocker_,
+    if (live == 0) return;
+    // The segments segmentTransmittance() would trace, in the rays' own lanes: the others'
+    // origins are NaN, which the packet's bounds leave out, and they end before they start.
+    using namespace lanes;
+    segments_.count = count;
+    segments_.groups = (count + 3) / 4;
+    const Double4 none = splat(NAN), tolerance = splat(tol), nowhere = splat(-INFINITY);
+    for (int k = 0; k < 4 * segments_.groups; k += 4) {
+      const unsigned in = unsigned(live >> k) & 0xFu;
+      store(segments_.ox + k, select(in, load(shadowX_ + k), none));
+      store(segments_.oy + k, select(in, load(shadowY_ + k), none));
+      store(segments_.oz + k, select(in, load(shadowZ_ + k), none));
+      store(segments_.dx + k, load(pl.dirX + k));
+      store(segments_.dy + k, load(pl.dirY + k));
+      store(segments_.dz + k, load(pl.dirZ + k));
+      store(segmentEnd_ + k, select(in, load(pl.dist + k) - tolerance, nowhere));
+    }
+    scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, live, occlusion_, blocker_,
                                stats_.intersectionTests);
-    for (int i = 0; i < m; ++i) pl.occlusion[segmentRay_[i]] = uint8_t(occlusion_[i]);
+    for (uint64_t b = live; b != 0; b &= b - 1) {
+      const int k = __builtin_ctzll(b);
+      pl.occlusion[k] = uint8_t(occlusion_[k]);
+    }
   }
 
   Color lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
@@ -772,13 +787,15 @@ class Tracer {
   std::optional<ClosestHit> hits_[kMaxPacket];
   SurfacePoint points_[kMaxPacket];
   Vec3 normals_[kMaxPacket];
-  Vec3 shadowOrigin_[kMaxPacket];  // where every shadow segment of a hit starts
-  double px_[kMaxPacket], py_[kMaxPacket], pz_[kMaxPacket];
-  double nx_[kMaxPacket], ny_[kMaxPacket], nz_[kMaxPacket];
-  double pointError_[kMaxPacket];
+  // Where every shadow segment of a hit starts.
+  alignas(32) double shadowX_[kMaxPacket], shadowY_[kMaxPacket], shadowZ_[kMaxPacket];
+  Vec3 shadowOrigin(int k) const { return {shadowX_[k], shadowY_[k], shadowZ_[k]}; }
+  void setShadowOrigin(int k, const Vec3& o) { shadowX_[k] = o.x, shadowY_[k] = o.y, shadowZ_[k] = o.z; }
+  alignas(32) double px_[kMaxPacket], py_[kMaxPacket], pz_[kMaxPacket];
+  alignas(32) double nx_[kMaxPacket], ny_[kMaxPacket], nz_[kMaxPacket];
+  alignas(32) double pointError_[kMaxPacket];
   PacketRays segments_;
   alignas(32) double segmentEnd_[kMaxPacket];
-  int segmentRay_[kMaxPacket];
   Occlusion occlusion_[kMaxPacket];
   uint32_t blocker_[kMaxPacket];
   std::vector<PacketLight> known_;  // one per light

@@ -462,6 +462,46 @@ TEST(BvhPacket, OcclusionMatchesSingleSegments) {
   EXPECT_GT(transparent, 10);
 }
 
+// Segments left out of `live` (as the tracer leaves out its unlit rays, in place) are
+// reported Clear, and the others get the answers they get alone.
+TEST(BvhPacket, OcclusionTestsOnlyTheLiveSegments) {
+  SceneMaker gen(34);
+  const Bvh bvh(gen.spheres(400, 8, 0.05, 0.8));
+  int blocked = 0;
+  for (int packet = 0; packet < 200; ++packet) {
+    const Vec3 apex = gen.point(12);
+    const Vec3 centre = gen.point(9);
+    const int count = 1 + packet % kMaxPacket;
+    PacketRays lanes;
+    alignas(32) double tMax[kMaxPacket];
+    uint64_t live = 0;
+    std::vector<Ray> segments;
+    for (int k = 0; k < count; ++k) {
+      const Vec3 start = centre + gen.point(packet % 2 == 0 ? 2.0 : 0.05);
+      const double dist = length(apex - start);
+      segments.push_back({start, (apex - start) / dist});
+      const bool in = (k + packet) % 3 != 0;
+      live |= uint64_t(in) << k;
+      lanes.set(k, in ? start : Vec3(NAN), segments.back().dir);
+      tMax[k] = in ? dist - 1e-3 : -INFINITY;
+    }
+    lanes.finish(count);
+    for (int k = count; k < lanes.groups * 4; ++k) tMax[k] = -INFINITY;
+    std::vector<Occlusion> got(static_cast<size_t>(count), Occlusion::Transparent);
+    std::vector<uint32_t> blocker(static_cast<size_t>(count));
+    uint64_t tests = 0;
+    bvh.occlusionPacket(apex, lanes, tMax, 1e-3, live, got.data(), blocker.data(), tests);
+    for (int k = 0; k < count; ++k) {
+      uint32_t b = 0;
+      const Occlusion want = (live >> k & 1u) != 0 ? bvh.occlusion(segments[size_t(k)], 1e-3, tMax[k], tests, b)
+                                                   : Occlusion::Clear;
+      ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
+      blocked += want == Occlusion::Blocked;
+    }
+  }
+  EXPECT_GT(blocked, 100);
+}
+
 // The cone test is conservative: whenever one of its rays enters a box, it says so.
 TEST(BvhPacket, ConeNeverMissesABoxARayHits) {
   SceneMaker gen(33);
