@@ -709,24 +709,31 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
 
 namespace {
 
-// Can the plane lie between the apex and any segment start? Not when all of them are on
-// one side of it with a margin far above rounding (then every segment's parameter at the
-// plane falls outside the segment, as the exact test would find).
-bool planeSeparates(const Primitive& p, const Vec3& apex, const PacketRays& lanes, uint64_t live) {
-  const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape);
-  if (!plane) return false;
-  auto side = [&](const Vec3& x) {
-    const double a = dot(plane->normal, x), margin = 1e-9 * (std::fabs(a) + std::fabs(plane->distance));
-    const double d = a - plane->distance;
-    return d > margin ? 1 : d < -margin ? -1 : 0;
-  };
-  const int s = side(apex);
-  if (s == 0) return false;
-  for (; live != 0; live &= live - 1) {
-    const int k = __builtin_ctzll(live);
-    if (side({lanes.ox[k], lanes.oy[k], lanes.oz[k]}) != s) return false;
+// The segments of `live` that a plane surely does not meet, four lanes at a time: those that
+// start on the apex's side of it with a margin far above rounding (every point of such a
+// segment is on that side, so its parameter at the plane falls outside it, as the exact test
+// would find), and those that start exactly on it as hitPlane4 computes (their distance to
+// it is zero, so their hit parameter is not above tMin: hitPlane4 gives no hit).
+uint64_t planeMisses(const PlaneShape& plane, const Vec3& apex, const PacketRays& lanes, uint64_t live) {
+  using namespace lanes;
+  const double a = dot(plane.normal, apex), d = a - plane.distance;
+  const double margin = 1e-9 * (std::fabs(a) + std::fabs(plane.distance));
+  const int apexSide = d > margin ? 1 : d < -margin ? -1 : 0;
+  const Double4 nx = splat(plane.normal.x), ny = splat(plane.normal.y), nz = splat(plane.normal.z);
+  const Double4 distance = splat(plane.distance), scale = splat(1e-9), absDistance = splat(std::fabs(plane.distance));
+  uint64_t misses = 0;
+  for (int g = 0; g < lanes.groups; ++g) {
+    if ((live >> (4 * g) & 0xFu) == 0) continue;
+    const int k = 4 * g;
+    // In hitPlane4's order, which is also dot()'s.
+    const Double4 at = nx * load(lanes.ox + k) + ny * load(lanes.oy + k) + nz * load(lanes.oz + k);
+    const Double4 off = at - distance, slack = scale * (abs(at) + absDistance);
+    unsigned miss = equal(at, distance);
+    if (apexSide > 0) miss |= less(slack, off);
+    if (apexSide < 0) miss |= less(off, splat(0.0) - slack);
+    misses |= uint64_t(miss) << k;
   }
-  return true;
+  return misses & live;
 }
 
 }  // namespace
@@ -742,20 +749,13 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
                   tests);
 }
 
-void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
-                          uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  // From here on `live` holds the segments not yet blocked.
-  const int count = lanes.count;
-  for (int k = 0; k < count; ++k) out[k] = Occlusion::Clear;
-  if (live == 0) return;
-  LazySlabs slabs(lanes);
-  // The cone runs from the light back to each segment's start: s in [0, 1].
-  Vec3 lo, hi;
-  lanes.originRange(apex, lo, hi);
-  const PacketCone cone(apex, lo, hi, 0.0);
-  const double sHi = 1.0;
-  auto record = [&](int k, uint32_t i, bool opaque) {
-    if (opaque) {
+void Bvh::occludeLive(uint32_t i, const PacketRays& lanes, const double* tMax, double tMin, uint64_t& live,
+                      Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  const LeafItem& p = items_[i];
+  if (p.noShadow) return;
+  tests += uint64_t(__builtin_popcountll(live));
+  auto record = [&](int k) {
+    if (p.opaque) {
       out[k] = Occlusion::Blocked;
       blocker[k] = i;
       live &= ~(uint64_t(1) << k);
@@ -763,29 +763,49 @@ void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const doubl
       out[k] = Occlusion::Transparent;
     }
   };
-  // Tests the live segments against primitive i, four at a time for a sphere or a plane.
-  auto test = [&](uint32_t i) {
-    const LeafItem& p = items_[i];
-    if (p.noShadow) return;
-    tests += uint64_t(__builtin_popcountll(live));
-    if (p.kind != LeafItem::Kind::Other) {
-      double t[4];
-      for (int g = 0; g < lanes.groups; ++g) {
-        const unsigned group = unsigned(live >> (4 * g)) & 0xFu;
-        if (group == 0) continue;
-        unsigned hit = (p.kind == LeafItem::Kind::Sphere
-                            ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)
-                            : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)) &
-                       group;
-        for (; hit != 0; hit &= hit - 1) record(4 * g + __builtin_ctz(hit), i, p.opaque);
-      }
-      return;
+  if (p.kind != LeafItem::Kind::Other) {
+    double t[4];
+    for (int g = 0; g < lanes.groups; ++g) {
+      const unsigned group = unsigned(live >> (4 * g)) & 0xFu;
+      if (group == 0) continue;
+      unsigned hit = (p.kind == LeafItem::Kind::Sphere
+                          ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)
+                          : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)) &
+                     group;
+      for (; hit != 0; hit &= hit - 1) record(4 * g + __builtin_ctz(hit));
     }
-    for (uint64_t m = live; m != 0; m &= m - 1) {
-      const int k = __builtin_ctzll(m);
-      if (intersectItem(i, lanes.ray(k), tMin, tMax[k])) record(k, i, p.opaque);
-    }
-  };
+    return;
+  }
+  for (uint64_t m = live; m != 0; m &= m - 1) {
+    const int k = __builtin_ctzll(m);
+    if (intersectItem(i, lanes.ray(k), tMin, tMax[k])) record(k);
+  }
+}
+
+void Bvh::occludeLiveByUnbounded(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
+                                 uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  for (uint32_t i = boundedCount_; i < prims_.size() && live != 0; ++i) {
+    const LeafItem& it = items_[i];
+    const bool plane = it.kind == LeafItem::Kind::Plane && !it.noShadow;
+    const uint64_t missed = plane ? planeMisses(it.plane, apex, lanes, live) : 0;
+    uint64_t tested = live & ~missed;
+    if (tested == 0) continue;
+    occludeLive(i, lanes, tMax, tMin, tested, out, blocker, tests);
+    live = tested | missed;
+  }
+}
+
+void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
+                          uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  // From here on `live` holds the segments not yet blocked.
+  std::fill(out, out + lanes.count, Occlusion::Clear);
+  if (live == 0) return;
+  LazySlabs slabs(lanes);
+  // The cone runs from the light back to each segment's start: s in [0, 1].
+  Vec3 lo, hi;
+  lanes.originRange(apex, lo, hi);
+  const PacketCone cone(apex, lo, hi, 0.0);
+  const double sHi = 1.0;
   double unused[kBvhWidth];
   auto enters = [&](const BvhNode& node, unsigned candidates) {
     unsigned found = 0;
@@ -798,13 +818,24 @@ void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const doubl
   // A leaf's primitives are tested against every live segment: four segments cost one
   // vector test, about what one segment's box test would cost to rule them out.
   traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
-    for (uint32_t i = first; i < first + n && live != 0; ++i) test(i);
+    for (uint32_t i = first; i < first + n && live != 0; ++i)
+      occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
     return live == 0;
   });
-  for (uint32_t i = boundedCount_; i < prims_.size() && live != 0; ++i) {
-    if (planeSeparates(prims_[i], apex, lanes, live)) continue;
-    test(i);
+  occludeLiveByUnbounded(apex, lanes, tMax, tMin, live, out, blocker, tests);
+}
+
+void Bvh::occlusionPacketInCell(const LightBuffer& buffer, int cell, double reach, const PacketRays& lanes,
+                                const double* tMax, double tMin, uint64_t live, Occlusion* out, uint32_t* blocker,
+                                uint64_t& tests) const {
+  std::fill(out, out + lanes.count, Occlusion::Clear);
+  for (const LightBuffer::Entry& e : buffer.list(cell)) {
+    if (e.near > reach || live == 0) break;
+    occludeLive(e.primitive, lanes, tMax, tMin, live, out, blocker, tests);
   }
+  for (uint32_t i : buffer.everywhere())
+    if (live != 0) occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
+  occludeLiveByUnbounded(buffer.light(), lanes, tMax, tMin, live, out, blocker, tests);
 }
 
 }  // namespace pvrt

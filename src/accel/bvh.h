@@ -158,6 +158,12 @@ class Bvh {
   // as the padding's are, so that the packet's bounds leave them out.
   void occlusionPacket(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
                        uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+  // The same for live segments that all lie in one cell of the light's buffer, `cell`
+  // (each meeting occlusionToLight's conditions, `reach` the largest of theirs): the cell's
+  // list is tested against the packet instead of the tree walked.
+  void occlusionPacketInCell(const LightBuffer& buffer, int cell, double reach, const PacketRays& segments,
+                             const double* tMax, double tMin, uint64_t live, Occlusion* out, uint32_t* blocker,
+                             uint64_t& tests) const;
 
  private:
   template <class Enters, class Leaf>
@@ -166,6 +172,14 @@ class Bvh {
   // (then `blocker` is i); a see-through hit sets `transparent`; no_shadow ones are skipped.
   bool blocks(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests, bool& transparent,
               uint32_t& blocker) const;
+  // The packet shadow queries' test of primitive i (no_shadow ones skipped) against the
+  // segments in `live`, four at a time for a sphere or a plane: a segment that meets i is
+  // Blocked by it, and leaves `live`, when i is opaque, else Transparent.
+  void occludeLive(uint32_t i, const PacketRays& segments, const double* tMax, double tMin, uint64_t& live,
+                   Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+  // The unbounded primitives' part of the packet shadow queries.
+  void occludeLiveByUnbounded(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
+                              uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 

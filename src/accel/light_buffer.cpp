@@ -254,8 +254,39 @@ int LightBuffer::cellIndexOf(const Vec3& d) const {
 bool LightBuffer::cell(const Vec3& d, std::span<const Entry>& out) const {
   const int index = cellIndexOf(d);
   if (index < 0) return false;
-  out = {entries_.data() + offsets_[size_t(index)], offsets_[size_t(index) + 1] - offsets_[size_t(index)]};
+  out = list(index);
   return true;
+}
+
+// Every step of cellIndexOf is monotone in the components, rounding included (a correctly
+// rounded sum, product or quotient never reverses an order), so over the box the face is
+// one when one axis's magnitude beats the others' at every corner, and the cells along a
+// side lie between those of the box's extreme quotients.
+int LightBuffer::commonCell(const Vec3& lo, const Vec3& hi) const {
+  if (offsets_.empty()) return -1;
+  double least[3], most[3];  // the range of |d[a]| over the box
+  for (int a = 0; a < 3; ++a) {
+    if (!(lo[a] <= hi[a]) || !std::isfinite(lo[a]) || !std::isfinite(hi[a])) return -1;
+    least[a] = lo[a] > 0 ? lo[a] : hi[a] < 0 ? -hi[a] : 0.0;
+    most[a] = std::max(std::fabs(lo[a]), std::fabs(hi[a]));
+  }
+  // cellIndexOf's choice: z if |z| > max(|x|, |y|), else y if |y| > |x|, else x.
+  int a;
+  if (least[2] > std::max(most[0], most[1])) a = 2;
+  else if (least[1] > most[0] && most[2] <= least[1]) a = 1;
+  else if (least[0] > 0 && most[1] <= least[0] && most[2] <= least[0]) a = 0;
+  else return -1;
+  // |d[a]| > 0 throughout, so d[a] keeps one sign and the quotients below are monotone.
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  const double wLo = least[a], wHi = most[a];
+  auto side = [&](int axis, int& i) {
+    const double uLo = lo[axis] / (lo[axis] >= 0 ? wHi : wLo), uHi = hi[axis] / (hi[axis] >= 0 ? wLo : wHi);
+    i = cellOf(uLo, res_);
+    return cellOf(uHi, res_) == i;
+  };
+  int i, j;
+  if (!side(b, i) || !side(c, j)) return -1;
+  return cellIndex(2 * a + (hi[a] < 0 ? 1 : 0), i, j);
 }
 
 }  // namespace pvrt

@@ -59,6 +59,14 @@ class LightBuffer {
   // The cell of a direction from the light; -1 for a zero or non-finite one, or when there
   // are no cells.
   int cellIndexOf(const Vec3& fromLight) const;
+  // The cell that cellIndexOf gives every direction d with lo <= d <= hi (componentwise),
+  // when it is one cell; else -1. For a packet of segments, from the range of their
+  // directions, so that none needs a lookup of its own.
+  int commonCell(const Vec3& lo, const Vec3& hi) const;
+  // The primitives listed in cell `index` (a cellIndexOf or commonCell answer), nearest first.
+  std::span<const Entry> list(int index) const {
+    return {entries_.data() + offsets_[size_t(index)], offsets_[size_t(index) + 1] - offsets_[size_t(index)]};
+  }
   // Hints that cell `index` (from cellIndexOf, -1 for none) will soon be read: prefetchCell
   // starts fetching where its list is, prefetchList (which waits for that) the list's first
   // entries. Between the two, other work (other lights' cells) overlaps the wait.

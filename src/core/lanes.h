@@ -6,6 +6,7 @@
 // would.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -209,5 +210,17 @@ inline unsigned lessEqual(Float8 a, Float8 b) {
 inline void store(float* out, Float8 a) { std::memcpy(out, a.v, sizeof a.v); }
 
 #endif
+
+// The least and the greatest of the four lanes (of lanes with no NaN).
+inline double lowest(Double4 a) {
+  double v[4];
+  store(v, a);
+  return std::min(std::min(v[0], v[1]), std::min(v[2], v[3]));
+}
+inline double highest(Double4 a) {
+  double v[4];
+  store(v, a);
+  return std::max(std::max(v[0], v[1]), std::max(v[2], v[3]));
+}
 
 }  // namespace pvrt::lanes

@@ -88,6 +88,7 @@ class Tracer {
       nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
       pointError_[k] = length(points_[k].error);
     }
+    if constexpr ((E & kShadows) != 0) measureShadowShifts(padded);
     for (size_t j = 0; j < lights; ++j) {
       using namespace lanes;
       PacketLight& pl = known_[j];
@@ -527,45 +528,82 @@ class Tracer {
     }
     const double tol = scene_.tol.shadow;
     // In a big scene each segment is answered from the light's buffer (as shadowFactor would
-    // answer it), in a small one all of them by one walk of the tree (Scene::packetShadowsFromBuffers).
+    // answer it); in a small one (Scene::packetShadowsFromBuffers) all of them together: from
+    // the list of the buffer's cell when they all lie in one, else by one walk of the tree.
     // Only the lit rays have a segment: lightContribution stops before the shadow ray of the
     // others (misses, and the lanes past `count`, are never lit).
     uint64_t live = pl.lit;
-    if (const LightBuffer* buffer = scene_.packetShadowsFromBuffers ? bufferOf(j) : nullptr) {
-      for (uint64_t b = live; b != 0; b &= b - 1) {
+    const LightBuffer* buffer = bufferOf(j);
+    if (buffer && scene_.packetShadowsFromBuffers) {
+      for (uint64_t b = live & served_; b != 0; b &= b - 1) {
         const int k = __builtin_ctzll(b);
-        const Vec3 origin = shadowOrigin(k);
-        const double shift = length(origin - points_[k].p);
-        if (!bufferServes(shift)) continue;
         uint32_t blocker = 0;
         pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
-            *buffer, Ray{origin, {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
-            bufferReach(pl.dist[k], shift), stats_.intersectionTests, blocker));
-        live &= ~(uint64_t(1) << k);
+            *buffer, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
+            bufferReach(pl.dist[k], shadowShift_[k]), stats_.intersectionTests, blocker));
       }
+      live &= ~served_;
     }
     if (live == 0) return;
     // The segments segmentTransmittance() would trace, in the rays' own lanes: the others'
     // origins are NaN, which the packet's bounds leave out, and they end before they start.
+    // Beside them, the range of their directions and the farthest reach from the light, for
+    // a cell of the light's buffer that would hold them all.
     using namespace lanes;
     segments_.count = count;
     segments_.groups = (count + 3) / 4;
-    const Double4 none = splat(NAN), tolerance = splat(tol), nowhere = splat(-INFINITY);
+    const Double4 none = splat(NAN), tolerance = splat(tol), nowhere = splat(-INFINITY), widen = splat(1 + 1e-9);
+    Double4 lo[3] = {splat(INFINITY), splat(INFINITY), splat(INFINITY)}, hi[3] = {nowhere, nowhere, nowhere};
+    Double4 reach = nowhere;
     for (int k = 0; k < 4 * segments_.groups; k += 4) {
       const unsigned in = unsigned(live >> k) & 0xFu;
+      const Double4 dist = load(pl.dist + k);
+      const Double4 dir[3] = {load(pl.dirX + k), load(pl.dirY + k), load(pl.dirZ + k)};
       store(segments_.ox + k, select(in, load(shadowX_ + k), none));
       store(segments_.oy + k, select(in, load(shadowY_ + k), none));
       store(segments_.oz + k, select(in, load(shadowZ_ + k), none));
-      store(segments_.dx + k, load(pl.dirX + k));
-      store(segments_.dy + k, load(pl.dirY + k));
-      store(segments_.dz + k, load(pl.dirZ + k));
-      store(segmentEnd_ + k, select(in, load(pl.dist + k) - tolerance, nowhere));
+      store(segments_.dx + k, dir[0]);
+      store(segments_.dy + k, dir[1]);
+      store(segments_.dz + k, dir[2]);
+      store(segmentEnd_ + k, select(in, dist - tolerance, nowhere));
+      if (buffer) {  // lit lanes have finite directions (their dot with the normal passed a test)
+        for (int a = 0; a < 3; ++a) {
+          const Double4 d = select(in, dir[a], none);
+          lo[a] = minOr(d, lo[a]);  // a NaN lane keeps what it had
+          hi[a] = maxOr(d, hi[a]);
+        }
+        reach = maxOr(select(in, (dist + load(shadowShift_ + k)) * widen, nowhere), reach);
+      }
     }
-    scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, live, occlusion_, blocker_,
-                               stats_.intersectionTests);
+    // The cells list directions from the light: the negated range of the segments'.
+    const int cell = buffer && (live & ~served_) == 0
+                         ? buffer->commonCell({-highest(hi[0]), -highest(hi[1]), -highest(hi[2])},
+                                              {-lowest(lo[0]), -lowest(lo[1]), -lowest(lo[2])})
+                         : -1;
+    if (cell >= 0)
+      scene_.bvh.occlusionPacketInCell(*buffer, cell, highest(reach), segments_, segmentEnd_, tol, live,
+                                       occlusion_, blocker_, stats_.intersectionTests);
+    else
+      scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, live, occlusion_, blocker_,
+                                 stats_.intersectionTests);
     for (uint64_t b = live; b != 0; b &= b - 1) {
       const int k = __builtin_ctzll(b);
       pl.occlusion[k] = uint8_t(occlusion_[k]);
+    }
+  }
+
+  // How far each hit's shadow origin lies from its point (length(), lane by lane), and in
+  // served_ the lanes whose segments the light buffers may answer (bufferServes).
+  void measureShadowShifts(int padded) {
+    using namespace lanes;
+    const Double4 limit = splat(0.5 * LightBuffer::kMargin * scene_.tol.shadow);
+    served_ = 0;
+    for (int k = 0; k < padded; k += 4) {
+      const Double4 x = load(shadowX_ + k) - load(px_ + k), y = load(shadowY_ + k) - load(py_ + k),
+                    z = load(shadowZ_ + k) - load(pz_ + k);
+      const Double4 shift = lanes::sqrt(x * x + y * y + z * z);
+      store(shadowShift_ + k, shift);
+      served_ |= uint64_t(lessEqual(shift, limit)) << k;
     }
   }
 
@@ -794,6 +832,8 @@ class Tracer {
   alignas(32) double px_[kMaxPacket], py_[kMaxPacket], pz_[kMaxPacket];
   alignas(32) double nx_[kMaxPacket], ny_[kMaxPacket], nz_[kMaxPacket];
   alignas(32) double pointError_[kMaxPacket];
+  alignas(32) double shadowShift_[kMaxPacket];  // measureShadowShifts
+  uint64_t served_ = 0;                         // measureShadowShifts: a bit per lane
   PacketRays segments_;
   alignas(32) double segmentEnd_[kMaxPacket];
   Occlusion occlusion_[kMaxPacket];

@@ -502,6 +502,64 @@ TEST(BvhPacket, OcclusionTestsOnlyTheLiveSegments) {
   EXPECT_GT(blocked, 100);
 }
 
+// Packets that mix segments starting exactly on a plane (as a floor's shadow segments do),
+// on the light's side of it, and on the far side, with the light above, below and on the
+// plane, tilted or not: each segment gets the answer it gets alone.
+TEST(BvhPacket, OcclusionMatchesSingleSegmentsStartingOnAPlane) {
+  SceneMaker gen(35);
+  int blocked = 0, clear = 0, onPlane = 0, grazing = 0;
+  for (const Vec3& normal : {Vec3{0, 1, 0}, normalize(Vec3{0.2, 1, -0.3})}) {
+    const double distance = -2;
+    auto prims = gen.spheres(60, 8, 0.05, 0.6);
+    prims.push_back(make(PlaneShape{normal, distance}, 9999));
+    const Bvh bvh(prims);
+    for (int packet = 0; packet < 300; ++packet) {
+      // The light 5 above the plane, 5 below it, on it, or a hair above it (where segments
+      // from just below the plane graze it and cross it far from their start).
+      const double heights[] = {5.0, -5.0, 0.0, 0.01};
+      const double height = heights[packet % 4];
+      Vec3 apex = gen.point(6);
+      apex = apex + normal * (distance + height - dot(normal, apex));
+      const Vec3 centre = gen.point(6);
+      const int count = 1 + packet % kMaxPacket;
+      std::vector<Ray> segments;
+      std::vector<double> tMax;
+      for (int k = 0; k < count; ++k) {
+        Vec3 start = centre + gen.point(packet % 2 == 0 ? 3.0 : 0.01);
+        // On the plane as nearly as rounding lets it be, 0.5 to one side or the other, or
+        // a hair below it.
+        const double offsets[] = {0.0, 0.5, -0.5, -1e-4};
+        const double to = offsets[k % 4];
+        start = start + normal * (distance + to - dot(normal, start));
+        if (normal.x == 0) start.y = distance + to;  // exactly, for the level plane
+        onPlane += dot(normal, start) == distance;
+        grazing += to == -1e-4 && height == 0.01;
+        const double dist = length(apex - start);
+        if (dist < 0.01) continue;
+        segments.push_back({start, (apex - start) / dist});
+        tMax.push_back(dist - 1e-3);
+      }
+      if (segments.empty()) continue;
+      const int n = int(segments.size());
+      std::vector<Occlusion> got(static_cast<size_t>(n));
+      std::vector<uint32_t> blocker(static_cast<size_t>(n));
+      uint64_t tests = 0;
+      bvh.occlusionPacket(apex, segments.data(), tMax.data(), n, 1e-3, got.data(), blocker.data(), tests);
+      for (int k = 0; k < n; ++k) {
+        uint32_t b = 0;
+        const Occlusion want = bvh.occlusion(segments[size_t(k)], 1e-3, tMax[size_t(k)], tests, b);
+        ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
+        blocked += want == Occlusion::Blocked;
+        clear += want == Occlusion::Clear;
+      }
+    }
+  }
+  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(clear, 1000);
+  EXPECT_GT(onPlane, 1000);
+  EXPECT_GT(grazing, 500);
+}
+
 // The cone test is conservative: whenever one of its rays enters a box, it says so.
 TEST(BvhPacket, ConeNeverMissesABoxARayHits) {
   SceneMaker gen(33);

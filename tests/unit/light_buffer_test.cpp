@@ -12,6 +12,7 @@
 
 #include "accel/bvh.h"
 #include "accel/light_buffer.h"
+#include "accel/packet_rays.h"
 #include "geometry/primitive.h"
 #include "random_geometry.h"
 #include "render/renderer.h"
@@ -309,6 +310,93 @@ TEST(LightBuffer, ListsAreSortedAndHoldEveryPrimitive) {
   std::span<const LightBuffer::Entry> none;
   EXPECT_FALSE(buffer.cell({0, 0, 0}, none));
   EXPECT_FALSE(buffer.cell({NAN, 1, 0}, none));
+}
+
+// commonCell names a cell only when every direction of the box has it, and names the
+// cell of a box that is one direction.
+TEST(LightBuffer, CommonCellHoldsEveryDirectionOfTheBox) {
+  Maker gen(61);
+  const Bvh bvh(gen.scene(300, 5, 0.05, 0.5));
+  const LightBuffer buffer({0.3, 0.2, -0.1}, bvh.occluders());
+  ASSERT_TRUE(buffer.valid());
+  int answered = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    // Around a random direction, or around an edge or a corner between faces.
+    Vec3 centre = trial % 4 == 0 ? Vec3{1.0, trial % 8 == 0 ? -1.0 : 1.0, gen.uniform(-1, 1)} : gen.direction();
+    if (trial % 16 == 1) centre = {-1, 1, 1};
+    centre = centre * gen.uniform(0.01, 100);
+    const double spread = length(centre) * std::pow(10.0, -double(gen.pick(9)));
+    const Vec3 a = centre + gen.point(spread), b = centre + gen.point(spread);
+    const Vec3 lo = vmin(a, b), hi = vmax(a, b);
+    EXPECT_EQ(buffer.commonCell(a, a), buffer.cellIndexOf(a)) << "trial " << trial;
+    const int cell = buffer.commonCell(lo, hi);
+    if (cell < 0) continue;
+    ++answered;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 d{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+      ASSERT_EQ(buffer.cellIndexOf(d), cell) << "trial " << trial << " corner " << corner;
+    }
+    for (int k = 0; k < 8; ++k) {
+      const Vec3 d{gen.uniform(lo.x, hi.x), gen.uniform(lo.y, hi.y), gen.uniform(lo.z, hi.z)};
+      ASSERT_EQ(buffer.cellIndexOf(d), cell) << "trial " << trial << " point " << k;
+    }
+  }
+  EXPECT_GT(answered, 5000);
+  EXPECT_LT(answered, 19000);  // boxes across cells and faces were tried too
+  EXPECT_EQ(buffer.commonCell(Vec3(0.0), Vec3(0.0)), -1);
+  EXPECT_EQ(buffer.commonCell(Vec3{1, 0, 0}, Vec3{1, NAN, 0}), -1);
+}
+
+// A packet of segments toward the light that share a cell, answered from the cell's list,
+// gets for each segment the tree's answer, the floor's points (exactly on it) included.
+TEST(LightBuffer, PacketsInOneCellAgreeWithTheTree) {
+  Maker gen(62);
+  const std::vector<Primitive> prims = gen.scene(300, 5, 0.05, 0.5);
+  const Bvh bvh(prims);
+  const Vec3 light{1.5, 9, -2};
+  const LightBuffer buffer(light, bvh.occluders());
+  ASSERT_TRUE(buffer.valid());
+  int answered = 0, blocked = 0, transparent = 0;
+  for (int packet = 0; packet < 3000; ++packet) {
+    Vec3 centre = gen.point(5);
+    if (packet % 2 == 0) centre.y = -5;  // on the floor
+    const int count = 1 + packet % kMaxPacket;
+    PacketRays lanes;
+    alignas(32) double tMax[kMaxPacket];
+    Vec3 lo(INFINITY), hi(-INFINITY);
+    double reach = 0;
+    for (int k = 0; k < count; ++k) {
+      Vec3 start = centre + gen.point(packet % 3 == 0 ? 0.1 : 0.002);
+      if (packet % 2 == 0) start.y = -5;
+      const double dist = length(light - start);
+      const Vec3 dir = (light - start) / dist;
+      lanes.set(k, start, dir);
+      tMax[k] = dist - kTol;
+      lo = vmin(lo, -dir);
+      hi = vmax(hi, -dir);
+      reach = std::max(reach, dist * (1 + 1e-9));
+    }
+    lanes.finish(count);
+    for (int k = count; k < lanes.groups * 4; ++k) tMax[k] = -INFINITY;
+    const int cell = buffer.commonCell(lo, hi);
+    if (cell < 0) continue;
+    ++answered;
+    const uint64_t live = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
+    std::vector<Occlusion> got(static_cast<size_t>(count));
+    std::vector<uint32_t> blocker(static_cast<size_t>(count));
+    uint64_t tests = 0;
+    bvh.occlusionPacketInCell(buffer, cell, reach, lanes, tMax, kTol, live, got.data(), blocker.data(), tests);
+    for (int k = 0; k < count; ++k) {
+      uint32_t b = 0;
+      const Occlusion want = bvh.occlusion(lanes.ray(k), kTol, tMax[k], tests, b);
+      ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
+      blocked += want == Occlusion::Blocked;
+      transparent += want == Occlusion::Transparent;
+    }
+  }
+  EXPECT_GT(answered, 1500);
+  EXPECT_GT(blocked, 1000);
+  EXPECT_GT(transparent, 50);
 }
 
 // Every scene of the repository renders the same with its light buffers as without them,
