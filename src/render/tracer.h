@@ -335,13 +335,13 @@ class Tracer {
       }
     }
     const FinishDesc& f = s.finish;
-    FilterColor pig[4];
-    double alpha[4];
-    Color ambient[4];
+    // Initialised from the materials at once: default-constructed, these arrays were zeroed
+    // first (a rep stos that took 8% of this function).
+    FilterColor pig[4] = {m[0]->color, m[1]->color, m[2]->color, m[3]->color};
+    double alpha[4], ambientR[4], ambientG[4], ambientB[4];
     unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
     const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
-      pig[i] = m[i]->color;
       if constexpr ((E & kTextures) != 0) {
         if (checkered) {
           if (secondColour >> i & 1u) pig[i] = scene_.materials.checker(*m[i]).color2;
@@ -353,16 +353,16 @@ class Tracer {
         if (!m[i]->opaque && (pig[i].filter != 0 || pig[i].transmit != 0)) return false;
       }
       alpha[i] = 1.0 - pig[i].filter - pig[i].transmit;
-      ambient[i] = pig[i].rgb * f.ambient * scene_.globals.ambientLight * alpha[i] + pig[i].rgb * f.emission * alpha[i];
+      const Color ambient =
+          pig[i].rgb * f.ambient * scene_.globals.ambientLight * alpha[i] + pig[i].rgb * f.emission * alpha[i];
+      ambientR[i] = ambient.r, ambientG[i] = ambient.g, ambientB[i] = ambient.b;
     }
     stats_.shadingOps += 4;
     const Double4 pigR = set(pig[0].rgb.r, pig[1].rgb.r, pig[2].rgb.r, pig[3].rgb.r);
     const Double4 pigG = set(pig[0].rgb.g, pig[1].rgb.g, pig[2].rgb.g, pig[3].rgb.g);
     const Double4 pigB = set(pig[0].rgb.b, pig[1].rgb.b, pig[2].rgb.b, pig[3].rgb.b);
     const Double4 alphaV = set(alpha[0], alpha[1], alpha[2], alpha[3]);
-    Double4 r = set(ambient[0].r, ambient[1].r, ambient[2].r, ambient[3].r);
-    Double4 g = set(ambient[0].g, ambient[1].g, ambient[2].g, ambient[3].g);
-    Double4 b = set(ambient[0].b, ambient[1].b, ambient[2].b, ambient[3].b);
+    Double4 r = load(ambientR), g = load(ambientG), b = load(ambientB);
     const Double4 nx = load(nx_ + k0), ny = load(ny_ + k0), nz = load(nz_ + k0);
     const Double4 zero = splat(0.0);
     for (size_t j = 0; j < lights; ++j) {
