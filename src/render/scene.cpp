@@ -192,7 +192,9 @@ Scene buildScene(SceneDesc&& desc) { return build(desc, &desc.objects); }
 // buffers. 640x400, c=9, 2 threads, random spheres whose total volume is that of 100: on
 // 10^2 spheres one walk of the tree for the whole packet renders in 0.244 s against 0.274 s
 // from the buffers; on 10^3 they tie (0.46 s); on 10^4 the buffers take 0.68 s against
-// 0.79 s, on 10^5 1.0 s against 1.3 s, on 10^6 1.47 s against 2.20 s.
+// 0.79 s, on 10^5 1.0 s against 1.3 s, on 10^6 1.47 s against 2.20 s. (Measured before
+// small scenes' packets were answered from one buffer cell where they can, which made them
+// faster: the even point may now lie above 10^3.)
 constexpr size_t kPacketShadowsFromBuffers = 1000;
 
 void buildLightBuffers(Scene& s) {
