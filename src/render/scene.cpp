@@ -189,13 +189,14 @@ Scene buildScene(const SceneDesc& desc) { return build(desc, nullptr); }
 Scene buildScene(SceneDesc&& desc) { return build(desc, &desc.objects); }
 
 // From how many bounded primitives a packet's shadow segments are answered from the light
-// buffers. 640x400, c=9, 2 threads, random spheres whose total volume is that of 100: on
-// 10^2 spheres one walk of the tree for the whole packet renders in 0.244 s against 0.274 s
-// from the buffers; on 10^3 they tie (0.46 s); on 10^4 the buffers take 0.68 s against
-// 0.79 s, on 10^5 1.0 s against 1.3 s, on 10^6 1.47 s against 2.20 s. (Measured before
-// small scenes' packets were answered from one buffer cell where they can, which made them
-// faster: the even point may now lie above 10^3.)
-constexpr size_t kPacketShadowsFromBuffers = 1000;
+// buffers one by one, rather than together (from one buffer cell when they all lie in one,
+// else by one walk of the tree). 640x400, c=9, 2 threads, random spheres whose total volume
+// is that of 100, render stage, alternating runs (2026-11-25): on 10^3 spheres together
+// 0.34-0.48 s against 0.43-0.56 s one by one, on 3,000 0.56-0.59 s against 0.60-0.61 s
+// (faster in 4 of 4), on 5,000 a tie (0.56-0.72 s against 0.62-0.69 s), on 10^4 one by one
+// 0.60-0.77 s against 0.63-0.78 s, on 10^5 1.00-1.10 s against 1.39-1.65 s. (Before the
+// cells, with the tree alone, the even point was 10^3.)
+constexpr size_t kPacketShadowsFromBuffers = 4000;
 
 void buildLightBuffers(Scene& s) {
   const auto start = std::chrono::steady_clock::now();

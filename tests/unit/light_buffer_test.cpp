@@ -406,8 +406,12 @@ TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
   int scenes = 0, buffered = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(PVRT_SOURCE_DIR "/scenes")) {
     if (entry.path().extension() != ".xml") continue;
+    // Packets' segments answered from the buffers one by one (as in big scenes), or together
+    // from one cell where they can (as in small ones), against no buffers at all.
     Scene with = buildScene(loadSceneFile(entry.path().string()));
     with.packetShadowsFromBuffers = true;
+    Scene cells = with;
+    cells.packetShadowsFromBuffers = false;
     Scene without = with;
     without.lightBuffers.clear();
     RenderSettings s;
@@ -415,9 +419,11 @@ TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
     s.height = 40;
     for (int spp : {1, 9}) {
       s.sampler.samplesPerPixel = spp;
-      const RenderResult a = render(with, s), b = render(without, s);
+      const RenderResult a = render(with, s), b = render(without, s), c = render(cells, s);
       EXPECT_EQ(a.image.data(), b.image.data()) << entry.path() << " spp " << spp;
       EXPECT_EQ(a.totals.shadowRays, b.totals.shadowRays) << entry.path() << " spp " << spp;
+      EXPECT_EQ(c.image.data(), b.image.data()) << entry.path() << " spp " << spp << ", packets in cells";
+      EXPECT_EQ(c.totals.shadowRays, b.totals.shadowRays) << entry.path() << " spp " << spp << ", packets in cells";
     }
     ++scenes;
     for (const LightBuffer& lb : with.lightBuffers) buffered += lb.valid();
