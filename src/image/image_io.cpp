@@ -61,10 +61,11 @@ namespace {
 
 // The levels by float bit pattern: bucket b holds the level of pattern b << kBucketShift,
 // the smallest in it. Levels rise with the bits (positive floats order like their bits),
-// and with 2^16 buckets up to 1.0 no bucket holds more than one level's start (with 2^15,
-// some hold two), so a lookup and one comparison find the level, with no loop whose
-// branch the processor cannot predict: a 1280x800 image encodes in 5.4 ms instead of
-// 13.6 ms with 2^12 buckets and a search. ImageIo's encoder test checks every threshold.
+// and with buckets 2^16 bit patterns wide (16,257 up to 1.0) no bucket holds more than one
+// level's start (twice as wide, some hold two), so a lookup and one comparison find the
+// level, with no loop whose branch the processor cannot predict: a 1280x800 image encodes
+// in 5.4 ms instead of 13.6 ms with 4,065 buckets and a search. ImageIo's encoder test
+// checks every threshold.
 constexpr int kBucketShift = 16;
 constexpr uint32_t kOne = 0x3f800000u;  // 1.0f
 
