@@ -506,8 +506,18 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, doubl
   std::span<const LightBuffer::Entry> cell;
   if (!buffer.cell(-ray.dir, cell)) return occlusion(ray, tMin, tMax, tests, blocker);
   bool transparent = false;
-  for (const LightBuffer::Entry& e : cell) {
+  // In a big scene the leaf records of a list's entries lie far apart in memory: each is
+  // fetched kAhead entries before its test, so that several fetches are under way at once
+  // instead of one after another. Entries past `reach` are never tested, nor fetched.
+  constexpr size_t kAhead = 8;
+  auto fetch = [&](size_t k) {
+    if (k < cell.size() && cell[k].near <= reach) __builtin_prefetch(&items_[cell[k].primitive]);
+  };
+  for (size_t k = 0; k < kAhead; ++k) fetch(k);
+  for (size_t k = 0; k < cell.size(); ++k) {
+    const LightBuffer::Entry& e = cell[k];
     if (e.near > reach) break;
+    fetch(k + kAhead);
     if (blocks(e.primitive, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
   }
   for (uint32_t i : buffer.everywhere())
