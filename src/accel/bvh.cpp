@@ -503,8 +503,14 @@ Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tes
 
 Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
                                 uint64_t& tests, uint32_t& blocker) const {
-  std::span<const LightBuffer::Entry> cell;
-  if (!buffer.cell(-ray.dir, cell)) return occlusion(ray, tMin, tMax, tests, blocker);
+  const int index = buffer.cellIndexOf(-ray.dir);
+  if (index < 0) return occlusion(ray, tMin, tMax, tests, blocker);
+  return occlusionToLight(buffer, index, ray, tMin, tMax, reach, tests, blocker);
+}
+
+Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray& ray, double tMin, double tMax,
+                                double reach, uint64_t& tests, uint32_t& blocker) const {
+  const std::span<const LightBuffer::Entry> cell = buffer.list(index);
   bool transparent = false;
   // In a big scene the leaf records of a list's entries lie far apart in memory: each is
   // fetched kAhead entries before its test, so that several fetches are under way at once

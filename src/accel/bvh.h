@@ -125,6 +125,11 @@ class Bvh {
   // radians of the light's ray along -ray.dir, and no farther than `reach` from the light.
   Occlusion occlusionToLight(const LightBuffer& buffer, const Ray& ray, double tMin, double tMax, double reach,
                              uint64_t& tests, uint32_t& blocker) const;
+  // The same from a cell found beforehand: `cell` is buffer.cellIndexOf(u) (not -1) for a
+  // direction u such that every point of the segment lies within kMargin radians of the
+  // light's ray along u (-ray.dir itself, or one a few ulps off it).
+  Occlusion occlusionToLight(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
+                             double reach, uint64_t& tests, uint32_t& blocker) const;
   // For a walk of shadow segments along one line toward `buffer`'s light (see-through
   // surfaces crossed one by one, each segment starting where the last one stopped): the
   // shadow-casting primitives any of them may meet. Each segment must meet

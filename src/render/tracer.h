@@ -164,10 +164,14 @@ class Tracer {
                    pig.rgb * f.emission * alpha;
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
+    // The cells found for the prefetch above answer the shadow segments from p, with no
+    // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
+    pointCells_ = scene_.prefetchLightBuffers && known < 0 ? cells_.data() : nullptr;
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
       result += lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
+    pointCells_ = nullptr;
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
@@ -684,16 +688,20 @@ class Tracer {
     // The segment runs from p, a hair off the surface point, along the direction from the
     // surface point to the light: within kMargin of the light's ray when that hair is small
     // against the tolerance kept from the light (it always is but for absurd coordinates).
+    // That ray's cell is the one shadeAt found for its prefetch, from the light toward the
+    // surface point (the direction -l but for the rounding of l), when it found one.
     const double shift = length(p - sp.p);
     if (const LightBuffer* buffer = bufferOf(j); buffer && bufferServes(shift))
-      return segmentTransmittance(p, l, dist, inside, buffer, shift);
+      return segmentTransmittance(p, l, dist, inside, buffer, shift,
+                                  pointCells_ && j < cells_.size() ? cells_[j] : -1);
     return segmentTransmittance(p, l, dist, inside);
   }
 
   // `buffer`, when given, is the light buffer of the light the segment ends at, and `shift`
-  // how far the segment's origin is from the point at `dist` from the light.
+  // how far the segment's origin is from the point at `dist` from the light; `cell`, when
+  // not -1, the buffer's cell of the direction from the light to that point.
   Color segmentTransmittance(const Vec3& origin, const Vec3& dir, double dist, const InteriorList& inside,
-                             const LightBuffer* buffer = nullptr, double shift = 0) {
+                             const LightBuffer* buffer = nullptr, double shift = 0, int cell = -1) {
     ++stats_.shadowRays;
     // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
@@ -707,9 +715,11 @@ class Tracer {
     // query settles those; only see-through objects need the ordered walk below.
     uint32_t blocker = 0;
     const Occlusion found =
-        buffer ? scene_.bvh.occlusionToLight(*buffer, segment, tol, dist - tol, bufferReach(dist, shift),
-                                             stats_.intersectionTests, blocker)
-               : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
+        !buffer    ? scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker)
+        : cell < 0 ? scene_.bvh.occlusionToLight(*buffer, segment, tol, dist - tol, bufferReach(dist, shift),
+                                                 stats_.intersectionTests, blocker)
+                   : scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
+                                                 stats_.intersectionTests, blocker);
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
@@ -840,6 +850,7 @@ class Tracer {
   uint32_t blocker_[kMaxPacket];
   std::vector<PacketLight> known_;  // one per light
   std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
+  const int* pointCells_ = nullptr;  // cells_ while shadeAt's light loop may use them
   std::vector<uint32_t> shadowCandidates_;  // orderedTransmittance: what its steps may meet
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
   std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);

@@ -50,6 +50,7 @@ class Maker : public test::RandomGeometry {
 
 struct Answer {
   Occlusion viaTree, viaBuffer;
+  Occlusion viaCell;  // from the cell of the direction from the light to the surface point
   // The crossings of a walk along the segment, each step starting at the last crossing
   // (as the tracer walks see-through shadows): by the tree's closest query, and among the
   // buffer's candidates for the walk.
@@ -85,6 +86,12 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
   Answer a;
   a.viaTree = bvh.occlusion(segment, kTol, dist - kTol, tests, blocker);
   a.viaBuffer = bvh.occlusionToLight(buffer, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests, blocker);
+  // As the tracer asks it: from the cell of the direction from the light to the surface
+  // point, found before the segment's direction was.
+  const int cell = buffer.cellIndexOf(onSphere - buffer.light());
+  EXPECT_GE(cell, 0);
+  a.viaCell = bvh.occlusionToLight(buffer, cell, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests,
+                                   blocker);
   a.walkViaTree = walk(segment, dist, [&](const Ray& step, double left) {
     return bvh.closest(step, kTol, left - kTol, tests, /*skipNoShadow=*/true);
   });
@@ -110,6 +117,7 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
     if (length(buffer.light() - onSphere) <= 2 * kTol) continue;
     const Answer a = shadowOf(bvh, buffer, i, onSphere, 1e-12);
     ASSERT_EQ(int(a.viaBuffer), int(a.viaTree)) << "segment " << k << " from sphere " << i;
+    ASSERT_EQ(int(a.viaCell), int(a.viaTree)) << "segment " << k << " from sphere " << i;
     ASSERT_EQ(a.walkViaBuffer.size(), a.walkViaTree.size()) << "segment " << k;
     for (size_t c = 0; c < a.walkViaTree.size(); ++c) {
       EXPECT_EQ(a.walkViaBuffer[c].primitive, a.walkViaTree[c].primitive) << "segment " << k << " crossing " << c;
