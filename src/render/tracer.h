@@ -167,6 +167,7 @@ class Tracer {
     // The cells found for the prefetch above answer the shadow segments from p, with no
     // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
     pointCells_ = scene_.prefetchLightBuffers && known < 0 ? cells_.data() : nullptr;
+    pointShadowOrigin_.reset();
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
       result += lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
@@ -679,7 +680,13 @@ class Tracer {
         case Occlusion::Transparent: break;
       }
     }
-    const Vec3 p = offsetRayOrigin(sp, n, l);
+    // Every segment of this point leaves on the side n points to (lightContribution asks
+    // dot(n, l) >= kPovEpsilon first), so every light's starts at the same origin, found once.
+    if (!pointShadowOrigin_) {
+      const Vec3 origin = offsetRayOrigin(sp, n, n);
+      pointShadowOrigin_ = {origin, length(origin - sp.p)};
+    }
+    const Vec3 p = pointShadowOrigin_->p;
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) return areaShadow(light, p, l, inside);
     }
@@ -690,7 +697,7 @@ class Tracer {
     // against the tolerance kept from the light (it always is but for absurd coordinates).
     // That ray's cell is the one shadeAt found for its prefetch, from the light toward the
     // surface point (the direction -l but for the rounding of l), when it found one.
-    const double shift = length(p - sp.p);
+    const double shift = pointShadowOrigin_->shift;
     if (const LightBuffer* buffer = bufferOf(j); buffer && bufferServes(shift))
       return segmentTransmittance(p, l, dist, inside, buffer, shift,
                                   pointCells_ && j < cells_.size() ? cells_[j] : -1);
@@ -851,6 +858,13 @@ class Tracer {
   std::vector<PacketLight> known_;  // one per light
   std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
   const int* pointCells_ = nullptr;  // cells_ while shadeAt's light loop may use them
+  // The shadow segments' origin above the point shadeAt's light loop shades, and its
+  // distance from the point, once shadowFactor has found them.
+  struct ShadowOrigin {
+    Vec3 p;
+    double shift;
+  };
+  std::optional<ShadowOrigin> pointShadowOrigin_;
   std::vector<uint32_t> shadowCandidates_;  // orderedTransmittance: what its steps may meet
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
   std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
