@@ -536,9 +536,16 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray&
 bool Bvh::shadowCandidates(const LightBuffer& buffer, const Ray& ray, double length, double reach, double drift,
                            std::vector<uint32_t>& out) const {
   out.clear();
-  std::span<const LightBuffer::Entry> cell;
-  if (!buffer.cell(-ray.dir, cell)) return false;
-  for (const LightBuffer::Entry& e : cell) {
+  const int index = buffer.cellIndexOf(-ray.dir);
+  if (index < 0) return false;
+  shadowCandidates(buffer, index, ray, length, reach, drift, out);
+  return true;
+}
+
+void Bvh::shadowCandidates(const LightBuffer& buffer, int index, const Ray& ray, double length, double reach,
+                           double drift, std::vector<uint32_t>& out) const {
+  out.clear();
+  for (const LightBuffer::Entry& e : buffer.list(index)) {
     if (e.near > reach) break;
     const LeafItem& it = items_[e.primitive];
     if (it.noShadow) continue;
@@ -556,7 +563,6 @@ bool Bvh::shadowCandidates(const LightBuffer& buffer, const Ray& ray, double len
   }
   for (uint32_t i : buffer.everywhere())
     if (!items_[i].noShadow) out.push_back(i);
-  return true;
 }
 
 std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates, const Ray& ray, double tMin,

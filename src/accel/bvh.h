@@ -139,6 +139,9 @@ class Bvh {
   // tested everywhere. False when the direction has no cell.
   bool shadowCandidates(const LightBuffer& buffer, const Ray& ray, double length, double reach, double drift,
                         std::vector<uint32_t>& out) const;
+  // The same from a cell found beforehand, as occlusionToLight's overload takes it.
+  void shadowCandidates(const LightBuffer& buffer, int cell, const Ray& ray, double length, double reach,
+                        double drift, std::vector<uint32_t>& out) const;
   // closest(..., skipNoShadow = true) among `candidates` and the unbounded primitives: for a
   // segment of the walk above, the same nearest hit (but for a hit at exactly the distance
   // of another, which may be the other one).

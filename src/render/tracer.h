@@ -710,6 +710,9 @@ class Tracer {
   Color segmentTransmittance(const Vec3& origin, const Vec3& dir, double dist, const InteriorList& inside,
                              const LightBuffer* buffer = nullptr, double shift = 0, int cell = -1) {
     ++stats_.shadowRays;
+    // Else the cell of the segment's own direction, looked up once for both queries below
+    // (a see-through walk's steps all share that direction); without one, the tree.
+    if (buffer && cell < 0 && (cell = buffer->cellIndexOf(-dir)) < 0) buffer = nullptr;
     // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
     const double tol = scene_.tol.shadow;
@@ -722,17 +725,15 @@ class Tracer {
     // query settles those; only see-through objects need the ordered walk below.
     uint32_t blocker = 0;
     const Occlusion found =
-        !buffer    ? scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker)
-        : cell < 0 ? scene_.bvh.occlusionToLight(*buffer, segment, tol, dist - tol, bufferReach(dist, shift),
-                                                 stats_.intersectionTests, blocker)
-                   : scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
-                                                 stats_.intersectionTests, blocker);
+        buffer ? scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
+                                             stats_.intersectionTests, blocker)
+               : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
-    return orderedTransmittance(origin, dir, dist, inside, buffer);
+    return orderedTransmittance(origin, dir, dist, inside, buffer, cell);
   }
 
   // The product of the filters of every surface the segment crosses, nearest first, or
@@ -741,9 +742,10 @@ class Tracer {
   // steps stay close enough to the light's ray for its cell to list everything they can
   // meet (see bufferServes), they are answered from the few primitives of that list that
   // the line can reach (Bvh::shadowCandidates, listed at the first such step) instead of
-  // by walks of the tree.
+  // by walks of the tree. `cell`, when not -1, is the buffer's cell of -dir (or of a
+  // direction a few ulps off it).
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
-                             const LightBuffer* buffer = nullptr) {
+                             const LightBuffer* buffer = nullptr, int cell = -1) {
     const double tol = scene_.tol.shadow;
     // Every step that bufferServes lets through starts within this of the light's ray, so
     // within twice this of the first such step's line.
@@ -757,8 +759,13 @@ class Tracer {
         const Vec3 fromLight = origin - buffer->light();
         serves = bufferServes(length(cross(fromLight, dir)));
         if (serves && !listed) {
-          listed = scene_.bvh.shadowCandidates(*buffer, step, dist, length(fromLight) * (1 + 1e-9), drift,
-                                               shadowCandidates_);
+          const double reach = length(fromLight) * (1 + 1e-9);
+          if (cell >= 0) {
+            scene_.bvh.shadowCandidates(*buffer, cell, step, dist, reach, drift, shadowCandidates_);
+            listed = true;
+          } else {
+            listed = scene_.bvh.shadowCandidates(*buffer, step, dist, reach, drift, shadowCandidates_);
+          }
           if (!listed) buffer = nullptr, serves = false;  // no cell for this direction: the tree it is
         }
       }

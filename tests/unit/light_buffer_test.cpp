@@ -50,11 +50,11 @@ class Maker : public test::RandomGeometry {
 
 struct Answer {
   Occlusion viaTree, viaBuffer;
-  Occlusion viaCell;  // from the cell of the direction from the light to the surface point
+  Occlusion viaCell;  // from the cell of the direction from the light to the surface point (and walkViaCell)
   // The crossings of a walk along the segment, each step starting at the last crossing
   // (as the tracer walks see-through shadows): by the tree's closest query, and among the
   // buffer's candidates for the walk.
-  std::vector<ClosestHit> walkViaTree, walkViaBuffer;
+  std::vector<ClosestHit> walkViaTree, walkViaBuffer, walkViaCell;
 };
 
 // Up to 8 steps of such a walk from `segment` toward a light `dist` away; `nearest` answers
@@ -101,6 +101,11 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
   a.walkViaBuffer = walk(segment, dist, [&](const Ray& step, double left) {
     return bvh.closestAmong(candidates, step, kTol, left - kTol, tests);
   });
+  std::vector<uint32_t> fromCell;
+  bvh.shadowCandidates(buffer, cell, segment, dist, (dist + shift) * (1 + 1e-9), drift, fromCell);
+  a.walkViaCell = walk(segment, dist, [&](const Ray& step, double left) {
+    return bvh.closestAmong(fromCell, step, kTol, left - kTol, tests);
+  });
   return a;
 }
 
@@ -119,9 +124,12 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
     ASSERT_EQ(int(a.viaBuffer), int(a.viaTree)) << "segment " << k << " from sphere " << i;
     ASSERT_EQ(int(a.viaCell), int(a.viaTree)) << "segment " << k << " from sphere " << i;
     ASSERT_EQ(a.walkViaBuffer.size(), a.walkViaTree.size()) << "segment " << k;
+    ASSERT_EQ(a.walkViaCell.size(), a.walkViaTree.size()) << "segment " << k;
     for (size_t c = 0; c < a.walkViaTree.size(); ++c) {
       EXPECT_EQ(a.walkViaBuffer[c].primitive, a.walkViaTree[c].primitive) << "segment " << k << " crossing " << c;
       EXPECT_EQ(a.walkViaBuffer[c].hit.t, a.walkViaTree[c].hit.t) << "segment " << k << " crossing " << c;
+      EXPECT_EQ(a.walkViaCell[c].primitive, a.walkViaTree[c].primitive) << "segment " << k << " crossing " << c;
+      EXPECT_EQ(a.walkViaCell[c].hit.t, a.walkViaTree[c].hit.t) << "segment " << k << " crossing " << c;
     }
     crossings += a.walkViaTree.size();
     count += a.viaTree == Occlusion::Blocked;
