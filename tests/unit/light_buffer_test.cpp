@@ -417,7 +417,8 @@ TEST(LightBuffer, PacketsInOneCellAgreeWithTheTree) {
 
 // Every scene of the repository renders the same with its light buffers as without them,
 // bit for bit: one ray a pixel, and packets of 9 whose shadow segments are answered from the
-// buffers too (in these small scenes only when asked for).
+// buffers too, and shading answering its segments from the cells it prefetched (in these
+// small scenes only when asked for).
 TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
   int scenes = 0, buffered = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(PVRT_SOURCE_DIR "/scenes")) {
@@ -430,6 +431,10 @@ TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
     cells.packetShadowsFromBuffers = false;
     Scene without = with;
     without.lightBuffers.clear();
+    // And as in big scenes, where shading prefetches each light's cell for the point and its
+    // segments are answered from those cells.
+    Scene prefetched = with;
+    prefetched.prefetchLightBuffers = true;
     RenderSettings s;
     s.width = 64;
     s.height = 40;
@@ -440,6 +445,9 @@ TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
       EXPECT_EQ(a.totals.shadowRays, b.totals.shadowRays) << entry.path() << " spp " << spp;
       EXPECT_EQ(c.image.data(), b.image.data()) << entry.path() << " spp " << spp << ", packets in cells";
       EXPECT_EQ(c.totals.shadowRays, b.totals.shadowRays) << entry.path() << " spp " << spp << ", packets in cells";
+      const RenderResult d = render(prefetched, s);
+      EXPECT_EQ(d.image.data(), b.image.data()) << entry.path() << " spp " << spp << ", cells prefetched";
+      EXPECT_EQ(d.totals.shadowRays, b.totals.shadowRays) << entry.path() << " spp " << spp << ", cells prefetched";
     }
     ++scenes;
     for (const LightBuffer& lb : with.lightBuffers) buffered += lb.valid();
