@@ -166,13 +166,13 @@ class Tracer {
     const int known = std::exchange(knownRay_, -1);
     // The cells found for the prefetch above answer the shadow segments from p, with no
     // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
-    pointCells_ = scene_.prefetchLightBuffers && known < 0 ? cells_.data() : nullptr;
+    pointCells_ = scene_.prefetchLightBuffers && known < 0;
     pointShadowOrigin_.reset();
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
       result += lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
-    pointCells_ = nullptr;
+    pointCells_ = false;
 
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
@@ -864,7 +864,7 @@ class Tracer {
   uint32_t blocker_[kMaxPacket];
   std::vector<PacketLight> known_;  // one per light
   std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
-  const int* pointCells_ = nullptr;  // cells_ while shadeAt's light loop may use them
+  bool pointCells_ = false;          // whether cells_ are those of the point shadeAt's light loop shades
   // The shadow segments' origin above the point shadeAt's light loop shades, and its
   // distance from the point, once shadowFactor has found them.
   struct ShadowOrigin {
