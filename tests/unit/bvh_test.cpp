@@ -422,13 +422,37 @@ TEST(BvhPacket, ClosestMatchesSingleRays) {
   }
 }
 
+// How many segments of the packets checked below got each answer.
+struct Answers {
+  int blocked = 0, clear = 0, transparent = 0;
+};
+
+// occlusionPacket over `segments` (which all end at `apex`, tMin 1e-3) gives each segment
+// the answer occlusion() gives it alone; the answers are counted in `answers`.
+void expectPacketMatchesSingles(const Bvh& bvh, const Vec3& apex, const std::vector<Ray>& segments,
+                                const std::vector<double>& tMax, int packet, Answers& answers) {
+  const int count = int(segments.size());
+  std::vector<Occlusion> got(static_cast<size_t>(count));
+  std::vector<uint32_t> blocker(static_cast<size_t>(count));
+  uint64_t tests = 0;
+  bvh.occlusionPacket(apex, segments.data(), tMax.data(), count, 1e-3, got.data(), blocker.data(), tests);
+  for (int k = 0; k < count; ++k) {
+    uint32_t b = 0;
+    const Occlusion want = bvh.occlusion(segments[size_t(k)], 1e-3, tMax[size_t(k)], tests, b);
+    ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
+    answers.blocked += want == Occlusion::Blocked;
+    answers.clear += want == Occlusion::Clear;
+    answers.transparent += want == Occlusion::Transparent;
+  }
+}
+
 TEST(BvhPacket, OcclusionMatchesSingleSegments) {
   SceneMaker gen(32);
   auto prims = gen.spheres(400, 8, 0.05, 0.8);
   prims.push_back(make(PlaneShape{Vec3{0, 1, 0}, -9}, 9999));
   for (size_t i = 0; i < prims.size(); i += 7) prims[i].opaque = false;  // some see-through
   const Bvh bvh(prims);
-  int blocked = 0, clear = 0, transparent = 0;
+  Answers answers;
   for (int packet = 0; packet < 300; ++packet) {
     const Vec3 apex = gen.point(12);
     const Vec3 centre = gen.point(9);
@@ -443,23 +467,12 @@ TEST(BvhPacket, OcclusionMatchesSingleSegments) {
       segments.push_back({start, to / dist});
       tMax.push_back(dist - 1e-3);
     }
-    std::vector<Occlusion> got(static_cast<size_t>(count));
-    std::vector<uint32_t> blocker(static_cast<size_t>(count));
-    uint64_t tests = 0;
-    bvh.occlusionPacket(apex, segments.data(), tMax.data(), count, 1e-3, got.data(), blocker.data(), tests);
-    for (int k = 0; k < count; ++k) {
-      uint32_t b = 0;
-      const Occlusion want = bvh.occlusion(segments[size_t(k)], 1e-3, tMax[size_t(k)], tests, b);
-      ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
-      blocked += want == Occlusion::Blocked;
-      clear += want == Occlusion::Clear;
-      transparent += want == Occlusion::Transparent;
-    }
+    ASSERT_NO_FATAL_FAILURE(expectPacketMatchesSingles(bvh, apex, segments, tMax, packet, answers));
   }
   // The cases were all exercised.
-  EXPECT_GT(blocked, 100);
-  EXPECT_GT(clear, 100);
-  EXPECT_GT(transparent, 10);
+  EXPECT_GT(answers.blocked, 100);
+  EXPECT_GT(answers.clear, 100);
+  EXPECT_GT(answers.transparent, 10);
 }
 
 // Segments left out of `live` (as the tracer leaves out its unlit rays, in place) are
@@ -507,7 +520,8 @@ TEST(BvhPacket, OcclusionTestsOnlyTheLiveSegments) {
 // plane, tilted or not: each segment gets the answer it gets alone.
 TEST(BvhPacket, OcclusionMatchesSingleSegmentsStartingOnAPlane) {
   SceneMaker gen(35);
-  int blocked = 0, clear = 0, onPlane = 0, grazing = 0;
+  Answers answers;
+  int onPlane = 0, grazing = 0;
   for (const Vec3& normal : {Vec3{0, 1, 0}, normalize(Vec3{0.2, 1, -0.3})}) {
     const double distance = -2;
     auto prims = gen.spheres(60, 8, 0.05, 0.6);
@@ -540,22 +554,11 @@ TEST(BvhPacket, OcclusionMatchesSingleSegmentsStartingOnAPlane) {
         tMax.push_back(dist - 1e-3);
       }
       if (segments.empty()) continue;
-      const int n = int(segments.size());
-      std::vector<Occlusion> got(static_cast<size_t>(n));
-      std::vector<uint32_t> blocker(static_cast<size_t>(n));
-      uint64_t tests = 0;
-      bvh.occlusionPacket(apex, segments.data(), tMax.data(), n, 1e-3, got.data(), blocker.data(), tests);
-      for (int k = 0; k < n; ++k) {
-        uint32_t b = 0;
-        const Occlusion want = bvh.occlusion(segments[size_t(k)], 1e-3, tMax[size_t(k)], tests, b);
-        ASSERT_EQ(int(want), int(got[size_t(k)])) << "packet " << packet << " segment " << k;
-        blocked += want == Occlusion::Blocked;
-        clear += want == Occlusion::Clear;
-      }
+      ASSERT_NO_FATAL_FAILURE(expectPacketMatchesSingles(bvh, apex, segments, tMax, packet, answers));
     }
   }
-  EXPECT_GT(blocked, 1000);
-  EXPECT_GT(clear, 1000);
+  EXPECT_GT(answers.blocked, 1000);
+  EXPECT_GT(answers.clear, 1000);
   EXPECT_GT(onPlane, 1000);
   EXPECT_GT(grazing, 500);
 }
