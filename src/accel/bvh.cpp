@@ -13,6 +13,7 @@
 #include "accel/packet_rays.h"
 #include "accel/slabs.h"
 #include "core/lanes.h"
+#include "parallel/threads.h"
 
 namespace pvrt {
 
@@ -335,7 +336,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
     binary.reserve(2 * items.size());
     // Each level that may spawn doubles the threads: enough levels for buildThreads.
     int spawn = 0;
-    const unsigned threads = buildThreads > 0 ? buildThreads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = buildThreads > 0 ? buildThreads : unsigned(threadBudget());
     for (unsigned n = threads; n > 1; n = (n + 1) / 2) ++spawn;
     Builder(items, binary).build(0, uint32_t(items.size()), 1, spawn);
     nodes_.reserve(binary.size() / 2 + 1);

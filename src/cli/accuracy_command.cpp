@@ -221,7 +221,7 @@ int runAccuracy(const AccuracyOptions& o) {
     rows.push_back(std::move(r));
   };
   if (o.qualityVariant) {
-    const int maxP = o.maxThreads > 0 ? o.maxThreads : defaultThreadCount();
+    const int maxP = o.maxThreads > 0 ? o.maxThreads : threadBudget();
     for (int p = 1; p <= maxP; ++p) {
       const int c = nearestPerfectSquare(double(o.c0) * p);
       add(measure(su, "quality", sampler(o.qualitySampler, c), su.sceneDepth, p));

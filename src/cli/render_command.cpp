@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "image/image_io.h"
 #include "parallel/cluster.h"
+#include "parallel/threads.h"
 #include "render/distributed.h"
 #include "render/renderer.h"
 #include "render/time_budget.h"
@@ -192,6 +193,7 @@ Prepared prepare(const RenderOptions& o) {
     throw Error(ExitCode::Usage, fmt::format("--time-budget must be a positive number of seconds, got {}", o.timeBudget));
   if (o.hasTimeBudget && o.backendName == "mpi")
     throw Error(ExitCode::Usage, "--time-budget is not available with --backend mpi");
+  if (o.threads > 0) setThreadBudget(o.threads);  // every stage, not only the render
   Prepared p;
   const auto t0 = Clock::now();
   p.desc = loadSceneFile(o.scene);
@@ -273,6 +275,13 @@ int envInt(const char* name, int fallback) {
 int runMpi(const RenderOptions& o) {
   cluster::Session session;
   const int me = cluster::rank();
+  // The ranks of a node that may run on the same CPUs divide them: without --threads each
+  // takes its share (at least one), and where they all fit each is kept to a run of CPUs
+  // of its own, so no rank's threads ever compete with another's.
+  const cluster::NodePlace place = cluster::placeOnNode(allowedCpus());
+  setCpuShare({place.slot, place.slots});
+  if (o.threads > 0) setThreadBudget(o.threads);
+  pinProcessToShare();
   // Stage 1, local to each rank: anything may fail. Then every rank learns whether any
   // did, so all stop together with the first message, printed once, instead of hanging.
   std::optional<Prepared> p;

@@ -23,6 +23,14 @@ int rank();
 int size();
 std::string processorName();
 
+// Collective: this rank's place among the ranks of its node (MPI_COMM_TYPE_SHARED) that
+// may run on exactly the same CPUs `cpus`: it is `slot` of `slots` of them. The ranks of
+// `nodeRanks` on the node in all.
+struct NodePlace {
+  int slot = 0, slots = 1, nodeRanks = 1;
+};
+NodePlace placeOnNode(const std::vector<int>& cpus);
+
 // Communication cost of this rank so far: seconds spent in calls and bytes sent.
 struct CommCounters {
   double seconds = 0;

@@ -1,6 +1,7 @@
 // The only file that knows about MPI.
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -72,6 +73,31 @@ std::string processorName() {
   int len = 0;
   MPI_Get_processor_name(name, &len);
   return std::string(name, size_t(len));
+}
+
+NodePlace placeOnNode(const std::vector<int>& cpus) {
+  MPI_Comm node;
+  check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node), "MPI_Comm_split_type");
+  int me = 0, n = 1;
+  MPI_Comm_rank(node, &me);
+  MPI_Comm_size(node, &n);
+  // Each rank's CPUs as a bitmap of 1024 CPUs (CPU_SETSIZE); higher ones fold onto them,
+  // which can only make two different masks look alike.
+  constexpr int kWords = 16;
+  std::vector<uint64_t> mine(kWords, 0), all(size_t(kWords) * size_t(n));
+  for (int c : cpus) mine[size_t(c / 64) % kWords] |= uint64_t(1) << (c % 64);
+  const int rc = MPI_Allgather(mine.data(), kWords, MPI_UINT64_T, all.data(), kWords, MPI_UINT64_T, node);
+  MPI_Comm_free(&node);
+  check(rc, "MPI_Allgather");
+  NodePlace place;
+  place.nodeRanks = n;
+  place.slots = 0;
+  for (int r = 0; r < n; ++r) {
+    if (!std::equal(mine.begin(), mine.end(), all.begin() + std::ptrdiff_t(r) * kWords)) continue;
+    if (r < me) ++place.slot;
+    ++place.slots;
+  }
+  return place;
 }
 
 const CommCounters& counters() { return gCounters; }

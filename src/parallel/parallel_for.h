@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "parallel/schedule.h"
+#include "parallel/threads.h"
 
 namespace pvrt {
 
@@ -16,7 +17,10 @@ enum class Backend { Serial, OpenMP };
 void parallelFor(Backend backend, int workers, const WorkPlan& plan,
                  const std::function<void(size_t item, int worker)>& renderItem);
 
-// Worker count OpenMP would use by default (OMP_NUM_THREADS or the cores).
-int defaultThreadCount();
+// Calls body(i) for every i in [0, n) on up to `threads` threads (0: threadBudget()),
+// one index at a time to whichever thread is free: for the stages before and after the
+// render (load, build, encode), whose results must not depend on which thread did what.
+// An exception thrown by a body ends the program, so bodies catch their own.
+void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body);
 
 }  // namespace pvrt

@@ -12,6 +12,7 @@
 #endif
 
 #include "parallel/parallel_for.h"
+#include "parallel/threads.h"
 
 namespace pvrt {
 
@@ -29,21 +30,14 @@ class TeamPinning {
  public:
   explicit TeamPinning(int workers) {
 #if defined(__linux__)
-    const char* pin = std::getenv("PVRT_PIN_THREADS");
-    if ((pin && std::strcmp(pin, "0") == 0) || std::getenv("OMP_PROC_BIND") || std::getenv("OMP_PLACES") ||
-        std::getenv("GOMP_CPU_AFFINITY"))
-      return;
-    cpu_set_t allowed;
-    if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return;
-    for (int c = 0; c < CPU_SETSIZE; ++c)
-      if (CPU_ISSET(c, &allowed)) cpus_.push_back(c);
-    // Open MPI ranks that share a node without binding share its CPUs: each takes its
-    // own run of them, or none is pinned if they do not all fit.
-    const char* localRank = std::getenv("OMPI_COMM_WORLD_LOCAL_RANK");
-    const char* localSize = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
-    const size_t ranks = localSize ? size_t(std::max(1, std::atoi(localSize))) : 1;
-    first_ = localRank ? size_t(std::max(0, std::atoi(localRank))) * size_t(workers) : 0;
-    active_ = workers > 1 && ranks * size_t(workers) <= cpus_.size() && first_ + size_t(workers) <= cpus_.size();
+    if (!pinningAllowed()) return;
+    cpus_ = allowedCpus();
+    // Processes that share these CPUs (MPI ranks of one node without binding, when
+    // pinProcessToShare could not split them) each take their own run of them, or none is
+    // pinned if they do not all fit.
+    const CpuShare share = cpuShare();
+    first_ = size_t(share.slot) * size_t(workers);
+    active_ = workers > 1 && size_t(share.slots) * size_t(workers) <= cpus_.size();
 #else
     (void)workers;
 #endif
@@ -138,6 +132,14 @@ void parallelFor(Backend backend, int workers, const WorkPlan& plan,
   runOpenMP(workers, plan, renderItem);
 }
 
-int defaultThreadCount() { return omp_get_max_threads(); }
+void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body) {
+  const int team = int(std::min<size_t>(n, size_t(threads > 0 ? threads : threadBudget())));
+  if (team <= 1) {
+    for (size_t i = 0; i < n; ++i) body(i);
+    return;
+  }
+#pragma omp parallel for num_threads(team) schedule(dynamic, 1)
+  for (long i = 0; i < long(n); ++i) body(size_t(i));
+}
 
 }  // namespace pvrt

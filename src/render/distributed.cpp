@@ -24,7 +24,7 @@ class RankRenderer {
   RankRenderer(const Scene& scene, const RenderSettings& s, const WorkPlan& plan)
       : scene_(scene), s_(s), plan_(plan), sampler_(s.sampler), kernel_(kernelFor(scene.effects)),
         image_(s.width, s.height), load_(s.loadMap ? size_t(s.width) * s.height : 0, 0.0f),
-        threads_(s.threads > 0 ? s.threads : defaultThreadCount()), perThread_(size_t(threads_)) {}
+        threads_(s.threads > 0 ? s.threads : threadBudget()), perThread_(size_t(threads_)) {}
 
   void render(const std::vector<int>& items) {
     // The rows of these items, handed to the rank's threads one at a time.

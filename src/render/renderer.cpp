@@ -30,7 +30,7 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
 
   const int workers = settings.backend == Backend::Serial
                           ? 1
-                          : (settings.threads > 0 ? settings.threads : defaultThreadCount());
+                          : (settings.threads > 0 ? settings.threads : threadBudget());
   const WorkPlan plan = makeWorkPlan(settings.schedule, settings.width, settings.height, workers);
   result.workers.assign(size_t(workers), WorkerStats{});
 

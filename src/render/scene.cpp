@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "parallel/threads.h"
 
 namespace pvrt {
 
@@ -214,7 +215,7 @@ void buildLightBuffers(Scene& s) {
     for (size_t k; (k = next++) < which.size();)
       s.lightBuffers[which[k]] = LightBuffer(s.lights[which[k]].location, occluders);
   };
-  const size_t threads = std::min<size_t>(which.size(), std::max(1u, std::thread::hardware_concurrency()));
+  const size_t threads = std::min<size_t>(which.size(), size_t(threadBudget()));
   std::vector<std::future<void>> tasks;
   for (size_t t = 1; t < threads; ++t) tasks.push_back(std::async(std::launch::async, work));
   work();

@@ -1,0 +1,72 @@
+#include "parallel/threads.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
+namespace pvrt {
+
+namespace {
+std::atomic<int> gBudget{0};
+std::atomic<int> gSlot{0}, gSlots{1};
+}  // namespace
+
+std::vector<int> allowedCpus() {
+  std::vector<int> cpus;
+#if defined(__linux__)
+  cpu_set_t allowed;
+  if (sched_getaffinity(0, sizeof allowed, &allowed) == 0)
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+      if (CPU_ISSET(c, &allowed)) cpus.push_back(c);
+#endif
+  if (cpus.empty())
+    for (unsigned c = 0; c < std::max(1u, std::thread::hardware_concurrency()); ++c) cpus.push_back(int(c));
+  return cpus;
+}
+
+void setCpuShare(CpuShare share) {
+  gSlots = std::max(1, share.slots);
+  gSlot = std::clamp(share.slot, 0, gSlots - 1);
+}
+
+CpuShare cpuShare() { return {gSlot.load(), gSlots.load()}; }
+
+void setThreadBudget(int threads) { gBudget = std::max(0, threads); }
+
+int threadBudget() {
+  if (const int set = gBudget.load(); set > 0) return set;
+  if (const char* env = std::getenv("OMP_NUM_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);
+  return std::max(1, int(allowedCpus().size()) / gSlots.load());
+}
+
+bool pinningAllowed() {
+  const char* pin = std::getenv("PVRT_PIN_THREADS");
+  return !(pin && std::strcmp(pin, "0") == 0) && !std::getenv("OMP_PROC_BIND") && !std::getenv("OMP_PLACES") &&
+         !std::getenv("GOMP_CPU_AFFINITY");
+}
+
+bool pinProcessToShare() {
+#if defined(__linux__)
+  const CpuShare share = cpuShare();
+  if (share.slots <= 1 || !pinningAllowed()) return false;
+  const std::vector<int> cpus = allowedCpus();
+  const size_t width = size_t(threadBudget());
+  if (size_t(share.slots) * width > cpus.size()) return false;
+  cpu_set_t mine;
+  CPU_ZERO(&mine);
+  for (size_t k = 0; k < width; ++k) CPU_SET(cpus[size_t(share.slot) * width + k], &mine);
+  if (sched_setaffinity(0, sizeof mine, &mine) != 0) return false;
+  setCpuShare({});
+  return true;
+#else
+  return false;
+#endif
+}
+
+}  // namespace pvrt
