@@ -54,7 +54,7 @@ int interrupted() {
 struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
   std::string gatherName = "gather", loadMap;
-  bool masterRenders = false;
+  bool masterRenders = true;
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
   uint64_t seed = 0;
   bool stats = false, quiet = false;
@@ -72,8 +72,18 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   fmt::print("Render statistics\n");
   fmt::print("  Image                 {} x {}, {} rays/pixel ({} sampler, spp {})\n", s.width, s.height,
              PixelSampler(s.sampler).count(), samplerName(s.sampler.kind), s.sampler.samplesPerPixel);
-  fmt::print("  Backend               {}, {} worker(s), schedule {}\n", o.backendName, r.workers.size(),
-             strategyName(s.schedule.strategy));
+  if (ranks.empty()) {
+    fmt::print("  Backend               {}, {} worker(s), schedule {}\n", o.backendName, r.workers.size(),
+               strategyName(s.schedule.strategy));
+  } else {
+    // Threads per rank: one number when all ranks have the same, else each rank's.
+    std::string threads = std::to_string(ranks[0].threads.size());
+    bool same = true;
+    for (const RankStats& k : ranks) same = same && k.threads.size() == ranks[0].threads.size();
+    for (size_t i = 1; !same && i < ranks.size(); ++i) threads += "," + std::to_string(ranks[i].threads.size());
+    fmt::print("  Backend               mpi, {} rank(s) x {} thread(s), schedule {}\n", ranks.size(), threads,
+               strategyName(s.schedule.strategy));
+  }
   fmt::print("  Kernel effects        {}\n", effectNames(r.effects));
   fmt::print("  Objects               {} primitives, {} lights\n", scene.bvh.primitives().size(),
              scene.lights.size());
@@ -374,7 +384,9 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--gather", o->gatherName, "MPI: gather (MPI_Gatherv) or recursive-doubling")
       ->check(CLI::IsMember({"gather", "recursive-doubling"}))
       ->capture_default_str();
-  c->add_flag("--master-renders", o->masterRenders, "MPI dynamic: rank 0 also renders tiles between requests");
+  c->add_flag("--master-renders,!--no-master-renders", o->masterRenders,
+              "MPI dynamic: rank 0 renders tiles too, answering requests between them (the default); "
+              "--no-master-renders keeps it to answering");
   c->add_option("--load-map", o->loadMap,
                 "Write the work per pixel to PREFIX.exr (counts) and PREFIX.png (log-scale false colour)");
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");

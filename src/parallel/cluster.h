@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,12 +62,30 @@ std::vector<float> exchange(int partner, const std::vector<float>& mine);
 void sendTo(int to, const std::vector<float>& data);
 std::vector<float> receiveFrom(int from);
 
-// The dynamic work queue of the master/worker strategy.
-// Worker side: ask rank 0 for the next item; -1 when there is none left.
-int askForWork();
-// Master side: is a request waiting? Which rank asked (blocks until one does)?
-bool requestPending();
-int takeRequest();
-void assign(int worker, int item);
+// The dynamic work queue of the master/worker strategy; items travel in batches.
+// Worker side: one request at a time, posted before the worker runs out, so that the
+// answer comes while it renders what it holds.
+class WorkRequest {
+ public:
+  WorkRequest();
+  ~WorkRequest();
+  WorkRequest(const WorkRequest&) = delete;
+  WorkRequest& operator=(const WorkRequest&) = delete;
+  void post(int want);  // asks rank 0 for up to `want` items
+  bool pending() const;
+  bool ready();             // the answer has come (never blocks)
+  std::vector<int> take();  // waits for the answer: the items, empty when none are left
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+// Master side: the next waiting request, if any (never blocks), and its answer.
+struct Request {
+  int worker = -1;
+  int want = 0;
+};
+std::optional<Request> pollRequest();
+void answer(int worker, const std::vector<int>& items);
 
 }  // namespace pvrt::cluster

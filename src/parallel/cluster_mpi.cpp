@@ -37,6 +37,17 @@ void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw Error(ExitCode::Internal, std::string("MPI: ") + what + " failed");
 }
 
+// Waits for `request` by testing it with short sleeps in between. Open MPI's own waits
+// spin, and a rank that spins while it waits (for the others at the barrier, for the
+// master's answer) takes a CPU from a rank still rendering whenever ranks share CPUs.
+void waitSleeping(MPI_Request& request, MPI_Status* status, const char* what) {
+  for (int flag = 0;;) {
+    check(MPI_Test(&request, &flag, status), what);
+    if (flag) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(20));
+  }
+}
+
 }  // namespace
 
 Session::Session() {
@@ -124,7 +135,9 @@ std::string firstError(const std::string& mine) {
 
 double barrier() {
   const double t0 = MPI_Wtime();
-  check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+  MPI_Request request;
+  check(MPI_Ibarrier(MPI_COMM_WORLD, &request), "MPI_Ibarrier");
+  waitSleeping(request, MPI_STATUS_IGNORE, "MPI_Ibarrier");
   return MPI_Wtime() - t0;
 }
 
@@ -193,38 +206,66 @@ std::vector<float> receiveFrom(int from) {
   return data;
 }
 
-int askForWork() {
-  Timed timed(sizeof(int));
-  int dummy = 0, item = -1;
-  check(MPI_Send(&dummy, 1, MPI_INT, 0, kTagRequest, MPI_COMM_WORLD), "MPI_Send");
-  check(MPI_Recv(&item, 1, MPI_INT, 0, kTagAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
-  return item;
+struct WorkRequest::State {
+  MPI_Request receive = MPI_REQUEST_NULL;
+  std::vector<int> items;
+  bool pending = false;
+};
+
+WorkRequest::WorkRequest() : s_(std::make_unique<State>()) {}
+WorkRequest::~WorkRequest() {
+  if (s_->pending) MPI_Wait(&s_->receive, MPI_STATUS_IGNORE);
 }
 
-bool requestPending() {
+void WorkRequest::post(int want) {
+  Timed timed(sizeof(int));
+  s_->items.assign(size_t(std::max(1, want)), -1);
+  check(MPI_Irecv(s_->items.data(), int(s_->items.size()), MPI_INT, 0, kTagAssign, MPI_COMM_WORLD, &s_->receive),
+        "MPI_Irecv");
+  s_->pending = true;
+  check(MPI_Send(&want, 1, MPI_INT, 0, kTagRequest, MPI_COMM_WORLD), "MPI_Send");
+}
+
+bool WorkRequest::pending() const { return s_->pending; }
+
+bool WorkRequest::ready() {
+  if (!s_->pending) return false;
   Timed timed;
   int flag = 0;
-  check(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
+  check(MPI_Test(&s_->receive, &flag, MPI_STATUS_IGNORE), "MPI_Test");
+  if (flag) s_->pending = false;  // MPI_Test freed the request; take() reads the items
   return flag != 0;
 }
 
-int takeRequest() {
+std::vector<int> WorkRequest::take() {
   Timed timed;
-  // Poll with short sleeps rather than block: Open MPI's blocking receive spins, and a
-  // spinning master would take a core from the workers when ranks share cores.
-  for (int flag = 0; !flag;) {
-    check(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE), "MPI_Iprobe");
-    if (!flag) std::this_thread::sleep_for(std::chrono::microseconds(50));
+  if (s_->pending) {
+    waitSleeping(s_->receive, MPI_STATUS_IGNORE, "MPI_Test");
+    s_->pending = false;
   }
-  int dummy = 0;
-  MPI_Status status;
-  check(MPI_Recv(&dummy, 1, MPI_INT, MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &status), "MPI_Recv");
-  return status.MPI_SOURCE;
+  std::vector<int> items;
+  for (int i : s_->items)
+    if (i >= 0) items.push_back(i);
+  s_->items.clear();
+  return items;
 }
 
-void assign(int worker, int item) {
-  Timed timed(sizeof(int));
-  check(MPI_Send(&item, 1, MPI_INT, worker, kTagAssign, MPI_COMM_WORLD), "MPI_Send");
+std::optional<Request> pollRequest() {
+  Timed timed;
+  int flag = 0;
+  MPI_Status status;
+  check(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+  if (!flag) return std::nullopt;
+  Request r;
+  check(MPI_Recv(&r.want, 1, MPI_INT, status.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+        "MPI_Recv");
+  r.worker = status.MPI_SOURCE;
+  return r;
+}
+
+void answer(int worker, const std::vector<int>& items) {
+  Timed timed(items.size() * sizeof(int));
+  check(MPI_Send(items.data(), int(items.size()), MPI_INT, worker, kTagAssign, MPI_COMM_WORLD), "MPI_Send");
 }
 
 }  // namespace pvrt::cluster

@@ -17,6 +17,11 @@ enum class Backend { Serial, OpenMP };
 void parallelFor(Backend backend, int workers, const WorkPlan& plan,
                  const std::function<void(size_t item, int worker)>& renderItem);
 
+// Runs team(worker) on `workers` threads at once, worker 0 on the calling thread (so it
+// may make MPI calls under MPI_THREAD_FUNNELED), each pinned as parallelFor's are. For
+// schedules that hand out work themselves (the MPI backend's dynamic queue).
+void parallelTeam(int workers, const std::function<void(int worker)>& team);
+
 // Calls body(i) for every i in [0, n) on up to `threads` threads (0: threadBudget()),
 // one index at a time to whichever thread is free: for the stages before and after the
 // render (load, build, encode), whose results must not depend on which thread did what.

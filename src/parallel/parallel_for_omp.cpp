@@ -132,6 +132,21 @@ void parallelFor(Backend backend, int workers, const WorkPlan& plan,
   runOpenMP(workers, plan, renderItem);
 }
 
+void parallelTeam(int workers, const std::function<void(int worker)>& team) {
+  if (workers <= 1) {
+    team(0);
+    return;
+  }
+  const TeamPinning pinning(workers);
+#pragma omp parallel num_threads(workers)
+  {
+    const int me = omp_get_thread_num();
+    const TeamPinning::Saved saved = pinning.begin(me);
+    team(me);
+    pinning.end(saved);
+  }
+}
+
 void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body) {
   const int team = int(std::min<size_t>(n, size_t(threads > 0 ? threads : threadBudget())));
   if (team <= 1) {

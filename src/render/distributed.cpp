@@ -1,6 +1,11 @@
 #include "render/distributed.h"
 
 #include <algorithm>
+#include <atomic>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <optional>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -50,6 +55,31 @@ class RankRenderer {
     }
   }
 
+  // Renders item i whole on one of the rank's threads (the dynamic queue's unit of work).
+  void renderItem(int i, int worker) {
+    WorkerStats& ws = perThread_[size_t(worker)];
+    const WorkItem& item = plan_.items[size_t(i)];
+    const auto start = Clock::now();
+    kernel_(scene_, sampler_, item, image_, s_.loadMap ? load_.data() : nullptr, ws.counts);
+    ws.seconds += secondsSince(start);
+    ws.pixels += item.pixels();
+    taken_[size_t(worker)].push_back(i);
+  }
+  // Runs team(worker) on every thread of the rank (worker 0 is the calling thread, the one
+  // that may talk to the other ranks) and books what renderItem rendered.
+  void team(const std::function<void(int worker)>& body) {
+    taken_.assign(size_t(threads_), {});
+    const auto t0 = Clock::now();
+    parallelTeam(threads_, body);
+    compute_ += secondsSince(t0);
+    for (const std::vector<int>& list : taken_)
+      for (int i : list) {
+        mine_.push_back(i);
+        pixels_ += plan_.items[size_t(i)].pixels();
+      }
+  }
+  int threads() const { return threads_; }
+
   // This rank's share as a self-describing payload: [n, item indices..., pixel data...].
   std::vector<float> payload() const {
     std::vector<float> out;
@@ -96,6 +126,7 @@ class RankRenderer {
   int threads_;
   std::vector<WorkerStats> perThread_;
   std::vector<int> mine_;
+  std::vector<std::vector<int>> taken_;  // per thread, by renderItem
   double compute_ = 0;
   long pixels_ = 0;
 };
@@ -149,6 +180,105 @@ void maybeSlow(const DistributedSettings& d) {
     std::this_thread::sleep_for(std::chrono::milliseconds(d.slowMillis));
 }
 
+
+// A worker rank's items in hand: filled by its thread 0 from rank 0's answers, emptied by
+// all its threads.
+class HeldItems {
+ public:
+  enum class Next { Item, Wait, Done };
+  void add(const std::vector<int>& batch) {
+    std::lock_guard<std::mutex> lock(m_);
+    if (batch.empty()) done_ = true;
+    items_.insert(items_.end(), batch.begin(), batch.end());
+  }
+  Next next(int& item) {
+    std::lock_guard<std::mutex> lock(m_);
+    if (items_.empty()) return done_ ? Next::Done : Next::Wait;
+    item = items_.front();
+    items_.pop_front();
+    return Next::Item;
+  }
+  size_t size() {
+    std::lock_guard<std::mutex> lock(m_);
+    return items_.size();
+  }
+  bool done() {
+    std::lock_guard<std::mutex> lock(m_);
+    return done_;
+  }
+
+ private:
+  std::mutex m_;
+  std::deque<int> items_;
+  bool done_ = false;
+};
+
+// The master/worker strategy. Rank 0 holds the queue (an atomic counter over the items):
+// its threads render from it (unless --no-master-renders), and its thread 0 answers the
+// other ranks' requests between its own items, sleeping while it has nothing else to do,
+// so it never takes a CPU from a worker. A worker asks for as many items as it has threads
+// and asks again as soon as it holds no more than that, so the answer comes while it
+// renders; every thread renders whole items, as OpenMP's tiles schedule does.
+void renderDynamic(RankRenderer& local, int items, const DistributedSettings& d) {
+  const int me = cluster::rank(), n = cluster::size();
+  if (me == 0) {
+    std::atomic<int> next{0};
+    const auto take = [&] {
+      const int i = next.fetch_add(1, std::memory_order_relaxed);
+      return i < items ? i : -1;
+    };
+    const bool renders = d.masterRenders || n == 1;
+    int working = n - 1;  // workers not yet told that nothing is left
+    local.team([&](int worker) {
+      if (worker != 0) {
+        for (int i; renders && (i = take()) >= 0;) {
+          maybeSlow(d);
+          local.renderItem(i, worker);
+        }
+        return;
+      }
+      for (;;) {
+        while (const std::optional<cluster::Request> r = cluster::pollRequest()) {
+          std::vector<int> batch;
+          for (int i; int(batch.size()) < r->want && (i = take()) >= 0;) batch.push_back(i);
+          if (batch.empty()) --working;
+          cluster::answer(r->worker, batch);
+        }
+        if (const int i = renders ? take() : -1; i >= 0) {
+          maybeSlow(d);
+          local.renderItem(i, 0);
+        } else if (working == 0) {
+          return;
+        } else {
+          std::this_thread::sleep_for(std::chrono::microseconds(20));
+        }
+      }
+    });
+    return;
+  }
+  const int want = local.threads();
+  cluster::WorkRequest request;
+  HeldItems held;
+  local.team([&](int worker) {
+    for (int i = -1;;) {
+      if (worker == 0) {
+        if (request.pending() && request.ready()) held.add(request.take());
+        if (!request.pending() && !held.done() && held.size() <= size_t(want)) request.post(want);
+      }
+      const HeldItems::Next next = held.next(i);
+      if (next == HeldItems::Next::Done) return;
+      if (next == HeldItems::Next::Item) {
+        maybeSlow(d);
+        local.renderItem(i, worker);
+      } else if (worker == 0) {
+        held.add(request.take());  // nothing to render until the answer comes
+      } else {
+        std::this_thread::sleep_for(std::chrono::microseconds(20));
+      }
+    }
+  });
+}
+
 }  // namespace
 
 const char* gatherName(GatherMethod g) { return g == GatherMethod::Gatherv ? "gather" : "recursive-doubling"; }
@@ -176,30 +306,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   RankRenderer local(scene, s, plan);
   const double commBefore = cluster::counters().seconds;
   if (strategy == Strategy::Dynamic) {
-    const int items = int(plan.items.size());
-    if (me == 0) {
-      int next = 0, working = n - 1;
-      const bool renders = d.masterRenders || n == 1;
-      while (working > 0 || (renders && next < items)) {
-        if (renders && next < items && (working == 0 || !cluster::requestPending())) {
-          maybeSlow(d);
-          local.render({next++});
-          continue;
-        }
-        const int worker = cluster::takeRequest();
-        if (next < items) {
-          cluster::assign(worker, next++);
-        } else {
-          cluster::assign(worker, -1);
-          --working;
-        }
-      }
-    } else {
-      for (int item = cluster::askForWork(); item >= 0; item = cluster::askForWork()) {
-        maybeSlow(d);
-        local.render({item});
-      }
-    }
+    renderDynamic(local, int(plan.items.size()), d);
   } else {
     std::vector<int> mine;
     for (size_t i = 0; i < plan.items.size(); ++i) {

@@ -19,7 +19,7 @@ enum class GatherMethod { Gatherv, RecursiveDoubling };
 
 struct DistributedSettings {
   GatherMethod gather = GatherMethod::Gatherv;
-  bool masterRenders = false;  // dynamic: rank 0 renders tiles between serving requests
+  bool masterRenders = true;  // dynamic: rank 0's threads render too (its thread 0 between answers)
   int slowRank = -1;           // testing aid: this rank sleeps `slowMillis` per item
   int slowMillis = 0;
 };

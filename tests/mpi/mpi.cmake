@@ -19,7 +19,16 @@ foreach(np 1 2 3 4)
 endforeach()
 add_test(NAME mpi.hybrid.np2.threads2 COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR}
                                              ${PVRT_MPI_SCENE} 2 cyclic recursive-doubling 2)
+add_test(NAME mpi.hybrid.np2.threads2.dynamic COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR}
+                                                     ${PVRT_MPI_SCENE} 2 dynamic gather 2)
+add_test(NAME mpi.hybrid.np3.threads2.dynamic COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR}
+                                                     ${PVRT_MPI_SCENE} 3 dynamic recursive-doubling 2)
+foreach(np 1 2 4)
+  add_test(NAME mpi.default_threads.np${np} COMMAND ${PVRT_MPI_CHECK} defaults ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} ${np})
+  set_tests_properties(mpi.default_threads.np${np} PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
+endforeach()
 add_test(NAME mpi.failure_on_one_rank COMMAND ${PVRT_MPI_CHECK} failure ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
 add_test(NAME mpi.dynamic_slow_rank COMMAND ${PVRT_MPI_CHECK} slow ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
-set_tests_properties(mpi.hybrid.np2.threads2 mpi.failure_on_one_rank mpi.dynamic_slow_rank
+set_tests_properties(mpi.hybrid.np2.threads2 mpi.hybrid.np2.threads2.dynamic mpi.hybrid.np3.threads2.dynamic
+                     mpi.failure_on_one_rank mpi.dynamic_slow_rank
                      PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)

@@ -7,6 +7,9 @@
 #       message once and no output file
 #   mpi_check.sh slow BUILD SCENE
 #       dynamic balancing gives a rank that sleeps per tile less work than the others
+#   mpi_check.sh defaults BUILD SCENE NP
+#       without --threads or OMP_NUM_THREADS, NP ranks on this node divide its CPUs: each
+#       has max(1, CPUs / NP) threads, never a thread per CPU each
 set -uo pipefail
 mode=$1 build=$2 scene=$3
 shift 3
@@ -45,6 +48,20 @@ slow)
   fast=$(awk '$1 == "2" && NF == 9 { print $2 }' "$work/stats")
   echo "slow rank rendered $slow tiles, fast rank $fast"
   [ -n "$slow" ] && [ -n "$fast" ] && [ "$slow" -lt "$fast" ] || exit 1
+  ;;
+defaults)
+  np=$1
+  cpus=$(nproc)
+  expect=$((cpus / np))
+  [ "$expect" -ge 1 ] || expect=1
+  # Unbound ranks all may use every CPU, so they share them. (Bound by Open MPI's default,
+  # to a core each for 2 ranks or fewer, each would have that core's CPUs alone.)
+  env -u OMP_NUM_THREADS "${mpirun[@]}" -np "$np" "$pvrt" render "$scene" \
+    -o "$work/out.png" --backend mpi --schedule dynamic "${size[@]}" --stats >"$work/stats" || exit 1
+  grep -E 'Backend|^  [0-9]' "$work/stats"
+  grep -q "mpi, $np rank(s) x $expect thread(s)" "$work/stats" || { echo "expected $expect thread(s) per rank on $cpus CPUs"; exit 1; }
+  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial "${size[@]}" || exit 1
+  "$pvrt" compare "$work/serial.png" "$work/out.png" --max-levels 0 --max-fraction-over-1 0
   ;;
 *) echo "unknown mode $mode"; exit 2 ;;
 esac
