@@ -15,5 +15,6 @@ Command addGenerateCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addAccuracyCommand(CLI::App& app);
+Command addMpiBenchCommand(CLI::App& app);
 
 }  // namespace pvrt::cli

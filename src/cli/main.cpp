@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   add(pvrt::cli::addExportCommand);
   add(pvrt::cli::addCompareCommand);
   add(pvrt::cli::addAccuracyCommand);
+  add(pvrt::cli::addMpiBenchCommand);
 
   try {
     app.parse(argc, argv);

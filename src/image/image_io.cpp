@@ -95,7 +95,7 @@ struct LevelTable {
 
 std::vector<uint8_t> encodeSrgb8(const Image& image) {
   static const LevelTable table;
-  const std::vector<float>& src = image.data();
+  const Image::Pixels& src = image.data();
   std::vector<uint8_t> out(src.size());
   for (size_t i = 0; i < src.size(); ++i) out[i] = table.level(src[i]);
   return out;

@@ -57,10 +57,14 @@ double barrier();
 std::vector<float> gatherv(const std::vector<float>& mine);
 // Collective: rank 0 receives `mine` from every rank (all of the same length).
 std::vector<double> gatherFixed(const std::vector<double>& mine);
-// Point-to-point: sends `mine` to `partner` and returns what it sent (MPI_Sendrecv).
-std::vector<float> exchange(int partner, const std::vector<float>& mine);
-void sendTo(int to, const std::vector<float>& data);
-std::vector<float> receiveFrom(int from);
+// Collective, the same result as gatherv() (but the order of the buffers) by point-to-point
+// recursive doubling: ranks beyond the largest power of two first hand their buffer to a
+// partner inside it; then in round k rank r swaps everything it holds with rank r xor 2^k.
+// Correct for any number of ranks. Empty on other ranks than 0.
+std::vector<float> gatherRecursiveDoubling(std::vector<float> mine);
+// Ranks 0 and 1 send `bytes` back and forth `reps` times; the round trips' seconds on rank
+// 0 (empty on the other ranks). Collective: every rank calls it, ranks above 1 wait.
+std::vector<double> pingPong(size_t bytes, int reps);
 
 // The dynamic work queue of the master/worker strategy; items travel in batches.
 // Worker side: one request at a time, posted before the worker runs out, so that the

@@ -168,15 +168,9 @@ std::vector<float> gatherv(const std::vector<float>& mine) {
   return all;
 }
 
-std::vector<double> gatherFixed(const std::vector<double>& mine) {
-  Timed timed(mine.size() * sizeof(double));
-  std::vector<double> all(rank() == 0 ? mine.size() * size_t(size()) : 0);
-  check(MPI_Gather(mine.data(), int(mine.size()), MPI_DOUBLE, all.data(), int(mine.size()), MPI_DOUBLE, 0,
-                   MPI_COMM_WORLD),
-        "MPI_Gather");
-  return all;
-}
+namespace {
 
+// Point-to-point: sends `mine` to `partner` and returns what it sent (MPI_Sendrecv).
 std::vector<float> exchange(int partner, const std::vector<float>& mine) {
   Timed timed(mine.size() * sizeof(float));
   int count = int(mine.size()), theirs = 0;
@@ -204,6 +198,61 @@ std::vector<float> receiveFrom(int from) {
   std::vector<float> data(static_cast<size_t>(count));
   check(MPI_Recv(data.data(), count, MPI_FLOAT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
   return data;
+}
+
+}  // namespace
+
+std::vector<float> gatherRecursiveDoubling(std::vector<float> held) {
+  const int me = rank(), n = size();
+  int p2 = 1;
+  while (p2 * 2 <= n) p2 *= 2;
+  if (me >= p2) {
+    sendTo(me - p2, held);
+    return {};
+  }
+  if (me + p2 < n) {
+    const std::vector<float> extra = receiveFrom(me + p2);
+    held.insert(held.end(), extra.begin(), extra.end());
+  }
+  for (int mask = 1; mask < p2; mask <<= 1) {
+    const std::vector<float> theirs = exchange(me ^ mask, held);
+    held.insert(held.end(), theirs.begin(), theirs.end());
+  }
+  return me == 0 ? held : std::vector<float>{};
+}
+
+std::vector<double> pingPong(size_t bytes, int reps) {
+  const int me = rank();
+  std::vector<char> buffer(std::max<size_t>(bytes, 1));
+  std::vector<double> times;
+  check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+  if (me <= 1 && size() > 1) {
+    const int count = int(bytes), other = 1 - me;
+    for (int k = 0; k < reps; ++k) {
+      const double t0 = MPI_Wtime();
+      if (me == 0) {
+        check(MPI_Send(buffer.data(), count, MPI_BYTE, other, kTagData, MPI_COMM_WORLD), "MPI_Send");
+        check(MPI_Recv(buffer.data(), count, MPI_BYTE, other, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv");
+        times.push_back(MPI_Wtime() - t0);
+      } else {
+        check(MPI_Recv(buffer.data(), count, MPI_BYTE, other, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv");
+        check(MPI_Send(buffer.data(), count, MPI_BYTE, other, kTagData, MPI_COMM_WORLD), "MPI_Send");
+      }
+    }
+  }
+  check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+  return me == 0 ? times : std::vector<double>{};
+}
+
+std::vector<double> gatherFixed(const std::vector<double>& mine) {
+  Timed timed(mine.size() * sizeof(double));
+  std::vector<double> all(rank() == 0 ? mine.size() * size_t(size()) : 0);
+  check(MPI_Gather(mine.data(), int(mine.size()), MPI_DOUBLE, all.data(), int(mine.size()), MPI_DOUBLE, 0,
+                   MPI_COMM_WORLD),
+        "MPI_Gather");
+  return all;
 }
 
 struct WorkRequest::State {

@@ -28,7 +28,8 @@ class RankRenderer {
  public:
   RankRenderer(const Scene& scene, const RenderSettings& s, const WorkPlan& plan)
       : scene_(scene), s_(s), plan_(plan), sampler_(s.sampler), kernel_(kernelFor(scene.effects)),
-        image_(s.width, s.height), load_(s.loadMap ? size_t(s.width) * s.height : 0, 0.0f),
+        image_(Image::unfilled(s.width, s.height)),  // only this rank's share is written and read
+         load_(s.loadMap ? size_t(s.width) * s.height : 0, 0.0f),
         threads_(s.threads > 0 ? s.threads : threadBudget()), perThread_(size_t(threads_)) {}
 
   void render(const std::vector<int>& items) {
@@ -151,28 +152,6 @@ void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r
         }
     }
   }
-}
-
-// Recursive doubling towards rank 0, correct for any number of ranks: ranks beyond the
-// largest power of two first hand their share to a partner inside it; then, in round k,
-// rank r swaps everything it holds with rank r xor 2^k.
-std::vector<float> recursiveDoubling(std::vector<float> held) {
-  const int me = cluster::rank(), n = cluster::size();
-  int p2 = 1;
-  while (p2 * 2 <= n) p2 *= 2;
-  if (me >= p2) {
-    cluster::sendTo(me - p2, held);
-    return {};
-  }
-  if (me + p2 < n) {
-    const std::vector<float> extra = cluster::receiveFrom(me + p2);
-    held.insert(held.end(), extra.begin(), extra.end());
-  }
-  for (int mask = 1; mask < p2; mask <<= 1) {
-    const std::vector<float> theirs = cluster::exchange(me ^ mask, held);
-    held.insert(held.end(), theirs.begin(), theirs.end());
-  }
-  return me == 0 ? held : std::vector<float>{};
 }
 
 void maybeSlow(const DistributedSettings& d) {
@@ -321,7 +300,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
 
   const std::vector<float> share = local.payload();
   const std::vector<float> all =
-      d.gather == GatherMethod::Gatherv ? cluster::gatherv(share) : recursiveDoubling(share);
+      d.gather == GatherMethod::Gatherv ? cluster::gatherv(share) : cluster::gatherRecursiveDoubling(share);
 
   RankStats mineStats;
   mineStats.computeSeconds = local.computeSeconds();
@@ -344,7 +323,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   DistributedResult out;
   if (me != 0) return out;
   RenderResult& r = out.render;
-  r.image = Image(s.width, s.height);
+  r.image = Image::unfilled(s.width, s.height);  // the payloads cover every pixel
   if (s.loadMap) r.load.assign(size_t(s.width) * s.height, 0.0f);
   unpack(all, plan, r, s.width);
   r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);

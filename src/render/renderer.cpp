@@ -22,7 +22,7 @@ void renderRect(const Scene& scene, const PixelSampler& sampler, EffectSet effec
 RenderResult render(const Scene& scene, const RenderSettings& settings) {
   const auto t0 = Clock::now();
   RenderResult result;
-  result.image = Image(settings.width, settings.height);
+  result.image = Image::unfilled(settings.width, settings.height);  // the plan covers every pixel
   if (settings.loadMap) result.load.assign(size_t(settings.width) * settings.height, 0.0f);
   const PixelSampler sampler(settings.sampler);
   result.effects = scene.effects | (sampler.count() > 1 ? kSupersampling : 0u);
