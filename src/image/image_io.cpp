@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "image/oiio_module.h"
 #include "image/png_io.h"
+#include "parallel/parallel_for.h"
 
 namespace pvrt {
 
@@ -97,7 +98,11 @@ std::vector<uint8_t> encodeSrgb8(const Image& image) {
   static const LevelTable table;
   const Image::Pixels& src = image.data();
   std::vector<uint8_t> out(src.size());
-  for (size_t i = 0; i < src.size(); ++i) out[i] = table.level(src[i]);
+  constexpr size_t kBlock = size_t(1) << 16;  // values a thread takes at a time
+  parallelIndices((src.size() + kBlock - 1) / kBlock, 0, [&](size_t block) {
+    const size_t end = std::min(src.size(), (block + 1) * kBlock);
+    for (size_t i = block * kBlock; i < end; ++i) out[i] = table.level(src[i]);
+  });
   return out;
 }
 

@@ -1,6 +1,6 @@
-// Image output: PNG through libpng, TGA and OpenEXR through the OpenImageIO module
-// (image/oiio_module.h). 8-bit formats (PNG, TGA) get POV-Ray's pipeline:
-// clip to [0,1], sRGB curve, round half up. OpenEXR keeps linear float values.
+// Image output: PNG deflated on every thread (image/png_io.h), TGA and OpenEXR through the
+// OpenImageIO module (image/oiio_module.h). 8-bit formats (PNG, TGA) get POV-Ray's pipeline:
+// clip to [0,1], sRGB curve, round half up, on every thread. OpenEXR keeps linear float values.
 // Files are written to a temporary name beside the target and renamed into place, so a
 // failed or interrupted write never leaves a truncated file or spoils an existing one.
 #pragma once

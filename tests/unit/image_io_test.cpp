@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "image/image_io.h"
 #include "image/png_io.h"
+#include "parallel/threads.h"
 
 namespace pvrt {
 namespace {
@@ -48,8 +49,12 @@ TEST(ImageIo, TableEncodingMatchesFormula) {
   px[i++] = -0.0f;
   px[i++] = 1.0f;
   px[i++] = std::nextafter(1.0f, 0.0f);
-  const std::vector<uint8_t> out = encodeSrgb8(img);
-  for (size_t k = 0; k < px.size(); ++k) ASSERT_EQ(out[k], encodeSrgb8(double(px[k]))) << "value " << px[k];
+  for (int threads : {1, 3}) {  // blocks of the image on each thread
+    setThreadBudget(threads);
+    const std::vector<uint8_t> out = encodeSrgb8(img);
+    for (size_t k = 0; k < px.size(); ++k) ASSERT_EQ(out[k], encodeSrgb8(double(px[k]))) << "value " << px[k];
+  }
+  setThreadBudget(0);
 }
 
 std::string tempPath(const std::string& name) {
