@@ -21,7 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-constexpr int kFloatsPerPixel = 4;  // R, G, B, work
 
 // Renders some of the plan's items on this rank, with its OpenMP threads over rows.
 class RankRenderer {
@@ -56,12 +55,21 @@ class RankRenderer {
     }
   }
 
-  // Renders item i whole on one of the rank's threads (the dynamic queue's unit of work).
-  void renderItem(int i, int worker) {
+  // Renders item i whole on one of the rank's threads (the dynamic queue's unit of work);
+  // `betweenRows`, when given, runs after each of its rows.
+  void renderItem(int i, int worker, const std::function<void()>& betweenRows = {}) {
     WorkerStats& ws = perThread_[size_t(worker)];
     const WorkItem& item = plan_.items[size_t(i)];
     const auto start = Clock::now();
-    kernel_(scene_, sampler_, item, image_, s_.loadMap ? load_.data() : nullptr, ws.counts);
+    float* load = s_.loadMap ? load_.data() : nullptr;
+    if (betweenRows) {
+      for (int y = item.y0; y < item.y1; ++y) {
+        kernel_(scene_, sampler_, {item.x0, y, item.x1, y + 1}, image_, load, ws.counts);
+        betweenRows();
+      }
+    } else {
+      kernel_(scene_, sampler_, item, image_, load, ws.counts);
+    }
     ws.seconds += secondsSince(start);
     ws.pixels += item.pixels();
     taken_[size_t(worker)].push_back(i);
@@ -81,17 +89,24 @@ class RankRenderer {
   }
   int threads() const { return threads_; }
 
-  // This rank's share as a self-describing payload: [n, item indices..., pixel data...].
+  // This rank's share as a self-describing payload: [n, item indices..., then for each
+  // item its rows of RGB, and its rows of work counts when there is a load map].
   std::vector<float> payload() const {
     std::vector<float> out;
+    size_t floats = 1 + mine_.size() + size_t(pixels_) * (s_.loadMap ? 4 : 3);
+    out.reserve(floats);
     out.push_back(float(mine_.size()));
     for (int i : mine_) out.push_back(float(i));  // exact: fewer than 2^24 items
     for (int i : mine_) {
       const WorkItem& it = plan_.items[size_t(i)];
-      for (int y = it.y0; y < it.y1; ++y)
-        for (int x = it.x0; x < it.x1; ++x) {
-          const float* p = image_.row(y) + size_t(x) * 3;
-          out.insert(out.end(), {p[0], p[1], p[2], s_.loadMap ? load_[size_t(y) * s_.width + x] : 0.0f});
+      for (int y = it.y0; y < it.y1; ++y) {
+        const float* row = image_.row(y) + size_t(it.x0) * 3;
+        out.insert(out.end(), row, row + size_t(it.x1 - it.x0) * 3);
+      }
+      if (s_.loadMap)
+        for (int y = it.y0; y < it.y1; ++y) {
+          const float* row = load_.data() + size_t(y) * size_t(s_.width) + size_t(it.x0);
+          out.insert(out.end(), row, row + (it.x1 - it.x0));
         }
     }
     return out;
@@ -132,7 +147,7 @@ class RankRenderer {
   long pixels_ = 0;
 };
 
-// Unpacks concatenated payloads into the image and load map.
+// Unpacks concatenated payloads (RankRenderer::payload) into the image and load map.
 void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r, int width) {
   size_t at = 0;
   while (at < all.size()) {
@@ -141,15 +156,12 @@ void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r
     at += n;
     for (size_t k = 0; k < n; ++k) {
       const WorkItem& it = plan.items[size_t(all[firstIndex + k])];
-      for (int y = it.y0; y < it.y1; ++y)
-        for (int x = it.x0; x < it.x1; ++x) {
-          float* p = r.image.row(y) + size_t(x) * 3;
-          p[0] = all[at];
-          p[1] = all[at + 1];
-          p[2] = all[at + 2];
-          if (!r.load.empty()) r.load[size_t(y) * width + x] = all[at + 3];
-          at += kFloatsPerPixel;
-        }
+      const size_t w = size_t(it.x1 - it.x0);
+      for (int y = it.y0; y < it.y1; ++y, at += 3 * w)
+        std::copy_n(all.data() + at, 3 * w, r.image.row(y) + size_t(it.x0) * 3);
+      if (!r.load.empty())
+        for (int y = it.y0; y < it.y1; ++y, at += w)
+          std::copy_n(all.data() + at, w, r.load.data() + size_t(y) * size_t(width) + size_t(it.x0));
     }
   }
 }
@@ -158,7 +170,6 @@ void maybeSlow(const DistributedSettings& d) {
   if (d.slowRank == cluster::rank() && d.slowMillis > 0)
     std::this_thread::sleep_for(std::chrono::milliseconds(d.slowMillis));
 }
-
 
 // A worker rank's items in hand: filled by its thread 0 from rank 0's answers, emptied by
 // all its threads.
@@ -194,7 +205,8 @@ class HeldItems {
 
 // The master/worker strategy. Rank 0 holds the queue (an atomic counter over the items):
 // its threads render from it (unless --no-master-renders), and its thread 0 answers the
-// other ranks' requests between its own items, sleeping while it has nothing else to do,
+// other ranks' requests between the rows of its own items, sleeping while it has nothing
+// else to do,
 // so it never takes a CPU from a worker. A worker asks for as many items as it has threads
 // and asks again as soon as it holds no more than that, so the answer comes while it
 // renders; every thread renders whole items, as OpenMP's tiles schedule does.
@@ -216,16 +228,20 @@ void renderDynamic(RankRenderer& local, int items, const DistributedSettings& d)
         }
         return;
       }
-      for (;;) {
+      const auto serve = [&] {
         while (const std::optional<cluster::Request> r = cluster::pollRequest()) {
           std::vector<int> batch;
           for (int i; int(batch.size()) < r->want && (i = take()) >= 0;) batch.push_back(i);
           if (batch.empty()) --working;
           cluster::answer(r->worker, batch);
         }
+      };
+      for (;;) {
+        serve();
         if (const int i = renders ? take() : -1; i >= 0) {
           maybeSlow(d);
-          local.renderItem(i, 0);
+          // Row by row, answering between rows: no worker waits for a whole tile.
+          local.renderItem(i, 0, serve);
         } else if (working == 0) {
           return;
         } else {

@@ -23,6 +23,10 @@ add_test(NAME mpi.hybrid.np2.threads2.dynamic COMMAND ${PVRT_MPI_CHECK} identica
                                                      ${PVRT_MPI_SCENE} 2 dynamic gather 2)
 add_test(NAME mpi.hybrid.np3.threads2.dynamic COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR}
                                                      ${PVRT_MPI_SCENE} 3 dynamic recursive-doubling 2)
+foreach(schedule cyclic dynamic)
+  add_test(NAME mpi.load_map.np3.${schedule} COMMAND ${PVRT_MPI_CHECK} loadmap ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} 3 ${schedule})
+  set_tests_properties(mpi.load_map.np3.${schedule} PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
+endforeach()
 foreach(np 1 2 4)
   add_test(NAME mpi.default_threads.np${np} COMMAND ${PVRT_MPI_CHECK} defaults ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} ${np})
   set_tests_properties(mpi.default_threads.np${np} PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)

@@ -7,6 +7,8 @@
 #       message once and no output file
 #   mpi_check.sh slow BUILD SCENE
 #       dynamic balancing gives a rank that sleeps per tile less work than the others
+#   mpi_check.sh loadmap BUILD SCENE NP SCHEDULE
+#       the load map (work per pixel, EXR) gathered from NP ranks is the serial one exactly
 #   mpi_check.sh defaults BUILD SCENE NP
 #       without --threads or OMP_NUM_THREADS, NP ranks on this node divide its CPUs: each
 #       has max(1, CPUs / NP) threads, never a thread per CPU each
@@ -48,6 +50,14 @@ slow)
   fast=$(awk '$1 == "2" && NF == 9 { print $2 }' "$work/stats")
   echo "slow rank rendered $slow tiles, fast rank $fast"
   [ -n "$slow" ] && [ -n "$fast" ] && [ "$slow" -lt "$fast" ] || exit 1
+  ;;
+loadmap)
+  np=$1 schedule=$2
+  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial --load-map "$work/serial" "${size[@]}" || exit 1
+  "${mpirun[@]}" -np "$np" "$pvrt" render "$scene" -o "$work/mpi.png" --backend mpi --schedule "$schedule" \
+    --threads 2 --load-map "$work/mpi" "${size[@]}" || exit 1
+  "$pvrt" compare "$work/serial.png" "$work/mpi.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
+  idiff -fail 0 -warn 0 "$work/serial.exr" "$work/mpi.exr"
   ;;
 defaults)
   np=$1
