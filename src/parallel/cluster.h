@@ -57,10 +57,11 @@ double barrier();
 std::vector<float> gatherv(const std::vector<float>& mine);
 // Collective: rank 0 receives `mine` from every rank (all of the same length).
 std::vector<double> gatherFixed(const std::vector<double>& mine);
-// Collective, the same result as gatherv() (but the order of the buffers) by point-to-point
-// recursive doubling: ranks beyond the largest power of two first hand their buffer to a
-// partner inside it; then in round k rank r swaps everything it holds with rank r xor 2^k.
-// Correct for any number of ranks. Empty on other ranks than 0.
+// Collective, the same result as gatherv() (but the order of the buffers) by recursive
+// doubling: in round k (k = 0, 1, ...) every rank r still holding data whose bit k is set
+// hands all it holds to rank r - 2^k, which appends it; after ceil(log2 P) rounds rank 0
+// holds everything. Any number of ranks; no rank ever holds more than rank 0 finally does.
+// Empty on other ranks than 0.
 std::vector<float> gatherRecursiveDoubling(std::vector<float> mine);
 // Ranks 0 and 1 send `bytes` back and forth `reps` times; the round trips' seconds on rank
 // 0 (empty on the other ranks). Collective: every rank calls it, ranks above 1 wait.

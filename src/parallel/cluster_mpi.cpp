@@ -170,20 +170,6 @@ std::vector<float> gatherv(const std::vector<float>& mine) {
 
 namespace {
 
-// Point-to-point: sends `mine` to `partner` and returns what it sent (MPI_Sendrecv).
-std::vector<float> exchange(int partner, const std::vector<float>& mine) {
-  Timed timed(mine.size() * sizeof(float));
-  int count = int(mine.size()), theirs = 0;
-  check(MPI_Sendrecv(&count, 1, MPI_INT, partner, kTagData, &theirs, 1, MPI_INT, partner, kTagData, MPI_COMM_WORLD,
-                     MPI_STATUS_IGNORE),
-        "MPI_Sendrecv");
-  std::vector<float> in(static_cast<size_t>(theirs));
-  check(MPI_Sendrecv(mine.data(), count, MPI_FLOAT, partner, kTagData, in.data(), theirs, MPI_FLOAT, partner,
-                     kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
-        "MPI_Sendrecv");
-  return in;
-}
-
 void sendTo(int to, const std::vector<float>& data) {
   Timed timed(data.size() * sizeof(float));
   int count = int(data.size());
@@ -191,34 +177,28 @@ void sendTo(int to, const std::vector<float>& data) {
   check(MPI_Send(data.data(), count, MPI_FLOAT, to, kTagData, MPI_COMM_WORLD), "MPI_Send");
 }
 
-std::vector<float> receiveFrom(int from) {
+// Receives what sendTo sent, appended to `held` (no copy in between).
+void receiveAppend(int from, std::vector<float>& held) {
   Timed timed;
   int count = 0;
   check(MPI_Recv(&count, 1, MPI_INT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
-  std::vector<float> data(static_cast<size_t>(count));
-  check(MPI_Recv(data.data(), count, MPI_FLOAT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
-  return data;
+  const size_t at = held.size();
+  held.resize(at + size_t(count));
+  check(MPI_Recv(held.data() + at, count, MPI_FLOAT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
 }
 
 }  // namespace
 
 std::vector<float> gatherRecursiveDoubling(std::vector<float> held) {
   const int me = rank(), n = size();
-  int p2 = 1;
-  while (p2 * 2 <= n) p2 *= 2;
-  if (me >= p2) {
-    sendTo(me - p2, held);
-    return {};
+  for (int mask = 1; mask < n; mask <<= 1) {
+    if (me & mask) {  // hand everything held to the partner below, and stop
+      sendTo(me - mask, held);
+      return {};
+    }
+    if (me + mask < n) receiveAppend(me + mask, held);
   }
-  if (me + p2 < n) {
-    const std::vector<float> extra = receiveFrom(me + p2);
-    held.insert(held.end(), extra.begin(), extra.end());
-  }
-  for (int mask = 1; mask < p2; mask <<= 1) {
-    const std::vector<float> theirs = exchange(me ^ mask, held);
-    held.insert(held.end(), theirs.begin(), theirs.end());
-  }
-  return me == 0 ? held : std::vector<float>{};
+  return held;  // rank 0
 }
 
 std::vector<double> pingPong(size_t bytes, int reps) {

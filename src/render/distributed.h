@@ -2,11 +2,13 @@
 // (and its own BVH); the image is cut by the chosen strategy, rendered with OpenMP
 // threads inside each rank, and gathered on rank 0.
 //
-// Memory model (per rank, W x H image, P ranks, 16 bytes per pixel: RGB + load):
-//   every rank keeps a full-size film (16 W H bytes) but only fills its share;
-//   gather:             rank 0 also receives all shares at once (16 W H bytes);
-//   recursive-doubling: after round k a rank holds 2^k shares, so the last rounds hold
-//                       up to the whole image on every rank of the power-of-two group.
+// Memory model (per rank, W x H image, P ranks; a pixel travels as 12 bytes of RGB, 16 with
+// a load map):
+//   every rank has a full-size film (12 W H bytes of address space) but only touches the
+//   pages of its share;
+//   gather:             rank 0 also receives all shares at once (12 W H bytes);
+//   recursive-doubling: a rank still in round k holds up to 2^k shares; only rank 0 ever
+//                       holds them all.
 #pragma once
 
 #include <vector>
@@ -20,7 +22,7 @@ enum class GatherMethod { Gatherv, RecursiveDoubling };
 struct DistributedSettings {
   GatherMethod gather = GatherMethod::Gatherv;
   bool masterRenders = true;  // dynamic: rank 0's threads render too (its thread 0 between answers)
-  int slowRank = -1;           // testing aid: this rank sleeps `slowMillis` per item
+  int slowRank = -1;          // testing aid: this rank sleeps `slowMillis` per item
   int slowMillis = 0;
 };
 
