@@ -4,6 +4,8 @@
 # (../shared/tools/bundle.sh BUILD BUNDLE, or any folder with pvrt.sh and mpirun.sh that
 # start them), python3 is the only other need (matplotlib for the plot, if there).
 #   bench/many_core.sh BUNDLE OUT [--quick|--full] [PARTS]   (PARTS: scaling,mpibench,big; default all)
+# SCALING_ARGS replaces the arguments given to bench/speedup.py (e.g. a --select of a few
+# configurations); MPIBENCH_RANKS lists the rank counts of mpi-bench (default 2 4 8 .. N).
 # Writes to OUT (8 files): machine.txt (CPUs, topology), scaling.md / scaling_runs.csv /
 # scaling_summary.csv / scaling.png (bench/speedup.py: OpenMP schedules, MPI strategies and
 # gathers, hybrid splits, the machine's ceiling, the c=256 setting), mpibench.csv (pvrt
@@ -46,6 +48,7 @@ else
   scaling=(--runs 5 --max-p "$n" --only ceiling,openmp,mpi,hybrid,fig1)
   spheres=1000000 reps=20 bench8k=
 fi
+[ -n "${SCALING_ARGS:-}" ] && eval "scaling=($SCALING_ARGS)"
 mkdir -p "$work/scaling"
 if has scaling; then
   say "scaling (bench/speedup.py ${scaling[*]})"
@@ -57,14 +60,18 @@ fi
 
 if has mpibench; then
   say "mpi-bench at 2..$n ranks"
-  p=2
-  while [ "$p" -le "$n" ]; do
+  ranks=${MPIBENCH_RANKS:-}
+  if [ -z "$ranks" ]; then
+    for ((p = 2; p <= n; p *= 2)); do ranks="$ranks $p"; done
+  fi
+  for p in $ranks; do
     "$mpirun" --bind-to none -np "$p" "$pvrt" mpi-bench --reps "$reps" $bench8k --csv "$work/mpibench-$p.csv" \
       >"$work/mpibench-$p.log" 2>&1 || say "mpi-bench at $p ranks failed"
-    p=$((p * 2))
   done
-  head -1 "$work/mpibench-2.csv" >"$out/mpibench.csv"
-  for f in "$work"/mpibench-*.csv; do tail -n +2 "$f" >>"$out/mpibench.csv"; done
+  first=1
+  for f in "$work"/mpibench-*.csv; do
+    if [ "$first" = 1 ]; then cat "$f" >"$out/mpibench.csv"; first=0; else tail -n +2 "$f" >>"$out/mpibench.csv"; fi
+  done
 fi
 
 has big || { tar czf "$out/logs.tgz" -C "$work" . 2>/dev/null; say "done"; exit 0; }

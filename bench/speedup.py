@@ -45,6 +45,8 @@ def parse_args(argv):
                          "against one process's; long)")
     ap.add_argument("--fig1-spp", type=int, default=256, help="c of the fig1 group (default 256)")
     ap.add_argument("--fig1-runs", type=int, default=2, help="rounds of the fig1 group (default 2)")
+    ap.add_argument("--fig1-base-runs", type=int, help="rounds of fig1's one-thread run (default: --fig1-runs)")
+    ap.add_argument("--select", help="only the configurations whose name matches this regular expression")
     ap.add_argument("--quick", action="store_true", help="tiny sizes and one round (a smoke test)")
     a = ap.parse_args(argv)
     a.runs = a.runs or (1 if a.quick else 5)
@@ -200,10 +202,13 @@ class Runner:
                 print("  %-40s c=%-3d run %-3s render median %.4f s, max %.4f s" % (
                     "together x%d" % n, self.a.spp, rnd, statistics.median(together), max(together)), flush=True)
 
-    def rounds(self, confs, rounds, spp):
+    def rounds(self, confs, rounds, spp, only_first=None):
+        """Every configuration once a round, forward then backward; `only_first` maps a configuration's
+        name to the number of rounds it takes part in (from the first)."""
         for rnd in range(rounds):
             for conf in (confs if rnd % 2 == 0 else confs[::-1]):
-                self.measure(conf, rnd, spp)
+                if rnd < (only_first or {}).get(conf[1], rounds):
+                    self.measure(conf, rnd, spp)
 
 
 def median(rows, field):
@@ -344,6 +349,8 @@ def main(argv, meta=None):
     if "ceiling" in a.only and a.max_p > 1:
         r.ceiling(a.runs)
     confs = configurations(a)
+    if a.select:
+        confs = [c for c in confs if re.search(a.select, c[1])]
     r.rounds(confs, a.runs, a.spp)
     if "fig1" in a.only:
         fig1 = [("fig1", "fig1 openmp P=1", "openmp", "tiles", "", 1, 1),
@@ -351,7 +358,10 @@ def main(argv, meta=None):
         if a.mpirun:
             fig1 += [("fig1", "fig1 mpi %s P=%d" % (s, a.max_p), "mpi", s, "gather", a.max_p, 1)
                      for s in ("cyclic", "dynamic")]
-        r.rounds(fig1, a.fig1_runs, a.fig1_spp)
+        if a.select:
+            fig1 = [c for c in fig1 if re.search(a.select, c[1])]
+        base_runs = a.fig1_base_runs if a.fig1_base_runs is not None else a.fig1_runs
+        r.rounds(fig1, a.fig1_runs, a.fig1_spp, {"fig1 openmp P=1": base_runs})
     summary, slowdown, alone, together = summarise(r.rows, a.max_p)
     # fig1's baseline is its own one-thread run at its c.
     for s in summary:

@@ -223,6 +223,10 @@ Prepared prepare(const RenderOptions& o) {
   s.threads = o.threads;
   if (!o.scheduleName.empty()) {
     s.schedule.strategy = parseStrategy(o.scheduleName);
+  } else if (o.backendName == "mpi") {
+    // Ranks share tiles on demand: the only strategy that keeps ranks on CPUs of unequal
+    // speed busy to the end (docs/parallel.md); OMP_SCHEDULE names OpenMP's schedules.
+    s.schedule.strategy = Strategy::Dynamic;
   } else {
     scheduleFromEnvironment(s.schedule);  // OMP_SCHEDULE picks an OpenMP schedule
   }
@@ -376,7 +380,7 @@ Command addRenderCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1024));
   c->add_option("--schedule", o->scheduleName,
                 "block, cyclic, static, dynamic, guided, runtime (OMP_SCHEDULE) or tiles (default: tiles, "
-                "or OMP_SCHEDULE when set)");
+                "or OMP_SCHEDULE when set; with --backend mpi: block, cyclic, tiles or dynamic, default dynamic)");
   c->add_option("--chunk", o->chunk, "Chunk size in rows for static/dynamic/guided")->check(CLI::Range(1, 1 << 20));
   c->add_option("--tile-size", o->tileSize, "Tile side in pixels for --schedule tiles")
       ->check(CLI::Range(1, 4096))
