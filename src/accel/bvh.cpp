@@ -1,261 +1,19 @@
-// Binned SAH build (centroids sorted into bins per axis, the cheapest split kept) of a
-// binary tree, collapsed into a wide one; iterative, front-to-back traversals of it.
+// Iterative, front-to-back traversals of the BVH (built in bvh_build.cpp).
 #include "accel/bvh.h"
 
 #include <algorithm>
-#include <array>
-#include <chrono>
 #include <cmath>
-#include <cstddef>
-#include <future>
-#include <thread>
 
 #include "accel/packet_rays.h"
 #include "accel/slabs.h"
 #include "core/lanes.h"
-#include "parallel/threads.h"
+#include "parallel/parallel_for.h"
 
 namespace pvrt {
 
 namespace {
 
 constexpr uint32_t kNone = ~0u;
-constexpr int kBins = 16;
-constexpr int kMaxLeafSize = 4;
-constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (stack of 64)
-constexpr uint32_t kParallelItems = 20000;  // below it, a subtree is built on the thread that got it
-constexpr double kTraversalCost = 1.0;    // relative to one primitive test
-constexpr double kIntersectionCost = 1.0;
-
-// A node of the binary tree the build makes before it is collapsed.
-struct BuildNode {
-  Bounds bounds;
-  uint32_t rightOrFirst = 0;  // interior: right child (the left one is next); leaf: first primitive
-  uint32_t count = 0;         // 0 for interior nodes
-};
-
-struct BuildItem {
-  Bounds bounds;
-  Vec3 centroid;
-  uint32_t index;
-};
-
-// Bounds.extend() a vector at a time, for the build's passes over millions of items: the
-// min and max of all three axes in one operation each. A NaN in an item leaves the box as
-// it was, as Bounds.extend() does, so the tree is the same. Loads four doubles from each
-// Vec3 of a BuildItem (the fourth, the next field, is ignored).
-struct BuildBox {
-  lanes::Double4 lo = lanes::splat(INFINITY), hi = lanes::splat(-INFINITY);
-  void extend(const Vec3& lo3, const Vec3& hi3) {
-    lo = lanes::minOr(lanes::load(&lo3.x), lo);
-    hi = lanes::maxOr(lanes::load(&hi3.x), hi);
-  }
-  Bounds bounds() const {
-    double l[4], h[4];
-    lanes::store(l, lo);
-    lanes::store(h, hi);
-    return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
-  }
-};
-static_assert(offsetof(BuildItem, centroid) >= offsetof(BuildItem, bounds) + sizeof(Bounds) &&
-                  sizeof(BuildItem) >= offsetof(BuildItem, centroid) + 4 * sizeof(double),
-              "BuildBox reads four doubles from each Vec3 of a BuildItem");
-
-class Builder {
- public:
-  Builder(std::vector<BuildItem>& items, std::vector<BuildNode>& nodes) : items_(items), nodes_(nodes) {}
-
-  // `spawn` more levels may build their right subtree on a thread of its own (into a
-  // vector of its own, appended afterwards), which gives the same tree as building
-  // everything on one thread: the node order is depth-first either way.
-  void build(uint32_t begin, uint32_t end, int depth, int spawn = 0) {
-    const uint32_t self = uint32_t(nodes_.size());
-    nodes_.emplace_back();
-    BuildBox box, centroidBox;
-    for (uint32_t i = begin; i < end; ++i) {
-      box.extend(items_[i].bounds.lo, items_[i].bounds.hi);
-      centroidBox.extend(items_[i].centroid, items_[i].centroid);
-    }
-    const Bounds bounds = box.bounds(), centroids = centroidBox.bounds();
-    nodes_[self].bounds = bounds;
-    const uint32_t count = end - begin;
-    uint32_t mid = count <= 1 ? end
-                 : depth < kMaxSahDepth ? split(begin, end, bounds, centroids)
-                                        : median(begin, end, centroids);
-    if (mid == end) {  // a leaf
-      nodes_[self].rightOrFirst = begin;
-      nodes_[self].count = count;
-      return;
-    }
-    if (spawn > 0 && end - begin >= kParallelItems) {
-      std::vector<BuildNode> right;
-      right.reserve(2 * size_t(end - mid));
-      Builder other(items_, right);
-      auto task = std::async(std::launch::async, [&] { other.build(mid, end, depth + 1, spawn - 1); });
-      build(begin, mid, depth + 1, spawn - 1);
-      task.get();
-      const uint32_t offset = uint32_t(nodes_.size());
-      nodes_[self].rightOrFirst = offset;
-      for (BuildNode n : right) {
-        if (n.count == 0) n.rightOrFirst += offset;  // an interior node's right child, in `right`
-        nodes_.push_back(n);
-      }
-      return;
-    }
-    build(begin, mid, depth + 1);
-    nodes_[self].rightOrFirst = uint32_t(nodes_.size());
-    build(mid, end, depth + 1);
-  }
-
- private:
-  uint32_t median(uint32_t begin, uint32_t end, const Bounds& centroids) {
-    if (end - begin <= kMaxLeafSize) return end;
-    splitAxis_ = centroids.longestAxis();
-    const uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
-                     [&](const BuildItem& a, const BuildItem& b) {
-                       return a.centroid[splitAxis_] < b.centroid[splitAxis_];
-                     });
-    return mid;
-  }
-
-  // Partitions [begin, end) and returns the split point, or `end` to make a leaf.
-  uint32_t split(uint32_t begin, uint32_t end, const Bounds& bounds, const Bounds& centroids) {
-    const uint32_t count = end - begin;
-    const double leafCost = kIntersectionCost * count;
-    double bestCost = INFINITY;
-    int bestAxis = -1, bestBin = 0;
-    // Every axis's bins in one pass over the items (a pass an axis read them three times).
-    bool binned[3];
-    double lo[3], scale[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      lo[axis] = centroids.lo[axis];
-      const double extent = centroids.hi[axis] - lo[axis];
-      binned[axis] = extent > 0;
-      scale[axis] = binned[axis] ? kBins / extent : 0;
-    }
-    std::array<std::array<BuildBox, kBins>, 3> binBoxes;
-    std::array<std::array<uint32_t, kBins>, 3> binCount{};
-    for (uint32_t i = begin; i < end; ++i) {
-      const BuildItem& it = items_[i];
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!binned[axis]) continue;
-        const int b = std::min(kBins - 1, int((it.centroid[axis] - lo[axis]) * scale[axis]));
-        binBoxes[size_t(axis)][size_t(b)].extend(it.bounds.lo, it.bounds.hi);
-        ++binCount[size_t(axis)][size_t(b)];
-      }
-    }
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!binned[axis]) continue;
-      std::array<Bounds, kBins> binBounds;
-      for (int b = 0; b < kBins; ++b) binBounds[size_t(b)] = binBoxes[size_t(axis)][size_t(b)].bounds();
-      // Sweep from the right to get the cost of every right side, then from the left.
-      std::array<double, kBins> rightArea{};
-      std::array<uint32_t, kBins> rightCount{};
-      Bounds acc;
-      uint32_t n = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        acc.extend(binBounds[size_t(b)]);
-        n += binCount[size_t(axis)][size_t(b)];
-        rightArea[size_t(b)] = acc.surfaceArea();
-        rightCount[size_t(b)] = n;
-      }
-      acc = Bounds{};
-      n = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        acc.extend(binBounds[size_t(b)]);
-        n += binCount[size_t(axis)][size_t(b)];
-        const uint32_t right = rightCount[size_t(b + 1)];
-        if (n == 0 || right == 0) continue;
-        const double cost = acc.surfaceArea() * n + rightArea[size_t(b + 1)] * right;
-        if (cost < bestCost) {
-          bestCost = cost;
-          bestAxis = axis;
-          bestBin = b;
-        }
-      }
-    }
-    const double area = bounds.surfaceArea();
-    const double splitCost = kTraversalCost + (area > 0 ? kIntersectionCost * bestCost / area : INFINITY);
-    if (bestAxis < 0) {
-      // All centroids coincide: split in the middle if the leaf would be too big.
-      if (count <= kMaxLeafSize) return end;
-      splitAxis_ = bounds.longestAxis();
-      return begin + count / 2;
-    }
-    if (count <= kMaxLeafSize && splitCost >= leafCost) return end;
-    auto middle = std::partition(items_.begin() + begin, items_.begin() + end, [&](const BuildItem& it) {
-      return std::min(kBins - 1, int((it.centroid[bestAxis] - lo[bestAxis]) * scale[bestAxis])) <= bestBin;
-    });
-    splitAxis_ = bestAxis;
-    const uint32_t mid = uint32_t(middle - items_.begin());
-    if (mid == begin || mid == end) return begin + count / 2;
-    return mid;
-  }
-
-  std::vector<BuildItem>& items_;
-  std::vector<BuildNode>& nodes_;
-  int splitAxis_ = 0;
-};
-
-// Turns the binary tree into the wide one: each wide node takes the children of a binary
-// node, then keeps opening its largest interior child until it has kBvhWidth.
-class Collapser {
- public:
-  Collapser(const std::vector<BuildNode>& binary, std::vector<BvhNode>& wide, BvhStats& stats)
-      : binary_(binary), wide_(wide), stats_(stats) {}
-
-  void collapseRoot() {
-    if (binary_[0].count > 0) {  // the whole tree is one leaf
-      wide_.emplace_back();
-      wide_[0].setChild(0, binary_[0].bounds, binary_[0].rightOrFirst, uint8_t(binary_[0].count));
-      stats_.leaves = 1;
-      stats_.maxDepth = 1;
-      return;
-    }
-    collapse(0, 1);
-  }
-
- private:
-  uint32_t collapse(uint32_t b, int depth) {
-    stats_.maxDepth = std::max(stats_.maxDepth, depth);
-    const uint32_t self = uint32_t(wide_.size());
-    wide_.emplace_back();
-    uint32_t kids[kBvhWidth] = {b + 1, binary_[b].rightOrFirst};
-    int n = 2;
-    while (n < kBvhWidth) {
-      int open = -1;
-      double largest = -1;
-      for (int i = 0; i < n; ++i) {
-        const BuildNode& k = binary_[kids[i]];
-        if (k.count == 0 && k.bounds.surfaceArea() > largest) {
-          largest = k.bounds.surfaceArea();
-          open = i;
-        }
-      }
-      if (open < 0) break;
-      const uint32_t k = kids[open];
-      kids[open] = k + 1;
-      kids[n++] = binary_[k].rightOrFirst;
-    }
-    for (int i = 0; i < n; ++i) {
-      const BuildNode& k = binary_[kids[i]];
-      if (k.count > 0) {
-        ++stats_.leaves;
-        stats_.maxDepth = std::max(stats_.maxDepth, depth + 1);
-        wide_[self].setChild(i, k.bounds, k.rightOrFirst, uint8_t(k.count));
-      } else {
-        const uint32_t child = collapse(kids[i], depth + 1);
-        wide_[self].setChild(i, k.bounds, child, 0);
-      }
-    }
-    return self;
-  }
-
-  const std::vector<BuildNode>& binary_;
-  std::vector<BvhNode>& wide_;
-  BvhStats& stats_;
-};
 
 // Deep enough for any tree the build makes: the binary tree is at most about 80 levels
 // deep (48 of SAH splits, then median halving), and a wide level pushes at most
@@ -284,119 +42,6 @@ class LazySlabs {
 };
 
 }  // namespace
-
-namespace {
-// The nearest float at or below / above v (NaN stays NaN, which every box test treats as
-// "may hit"; beyond the float range the bound becomes infinite, still conservative).
-float floatDown(double v) {
-  float f = float(v);
-  if (double(f) > v) f = std::nextafter(f, -INFINITY);
-  return f;
-}
-float floatUp(double v) {
-  float f = float(v);
-  if (double(f) < v) f = std::nextafter(f, INFINITY);
-  return f;
-}
-}  // namespace
-
-BvhNode::BvhNode() {
-  for (Quad& q : quad) {
-    for (int a = 0; a < 3; ++a) {
-      for (int c = 0; c < 4; ++c) {
-        q.lo[a][c] = INFINITY;
-        q.hi[a][c] = -INFINITY;
-      }
-    }
-  }
-}
-
-void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCount) {
-  Quad& q = quad[slot / 4];
-  for (int a = 0; a < 3; ++a) {
-    q.lo[a][slot % 4] = floatDown(b.lo[a]);
-    q.hi[a][slot % 4] = floatUp(b.hi[a]);
-  }
-  child[slot] = index;
-  count[slot] = leafCount;
-  used = uint8_t(std::max(int(used), slot + 1));
-}
-
-Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
-  const auto start = std::chrono::steady_clock::now();
-  std::vector<BuildItem> items;
-  items.reserve(primitives.size());
-  for (uint32_t i = 0; i < primitives.size(); ++i) {
-    const Bounds b = primitives[i].bounds();
-    if (b.empty()) continue;
-    items.push_back({b, b.centroid(), i});
-  }
-  if (!items.empty()) {
-    std::vector<BuildNode> binary;
-    binary.reserve(2 * items.size());
-    // Each level that may spawn doubles the threads: enough levels for buildThreads.
-    int spawn = 0;
-    const unsigned threads = buildThreads > 0 ? buildThreads : unsigned(threadBudget());
-    for (unsigned n = threads; n > 1; n = (n + 1) / 2) ++spawn;
-    Builder(items, binary).build(0, uint32_t(items.size()), 1, spawn);
-    nodes_.reserve(binary.size() / 2 + 1);
-    Collapser(binary, nodes_, stats_).collapseRoot();
-  }
-  // The order the primitives take: the bounded ones as the leaves have them, then the
-  // others. Applied in place, a cycle at a time, so that a big scene does not need a second
-  // copy of its primitives.
-  std::vector<uint32_t> order;
-  order.reserve(primitives.size());
-  std::vector<bool> placed(primitives.size(), false);
-  for (const BuildItem& it : items) {
-    order.push_back(it.index);
-    placed[it.index] = true;
-  }
-  boundedCount_ = uint32_t(order.size());
-  items = {};
-  for (uint32_t i = 0; i < primitives.size(); ++i)
-    if (!placed[i]) order.push_back(i);
-  std::vector<bool> done(primitives.size(), false);
-  for (size_t i = 0; i < order.size(); ++i) {
-    if (done[i]) continue;
-    // Slot j receives the primitive at order[j], which is the next slot of the cycle and
-    // still holds its own; the cycle closes with the one taken out of slot i.
-    Primitive first = std::move(primitives[i]);
-    for (size_t j = i;;) {
-      done[j] = true;
-      const size_t from = order[j];
-      if (from == i) {
-        primitives[j] = std::move(first);
-        break;
-      }
-      primitives[j] = std::move(primitives[from]);
-      j = from;
-    }
-  }
-  prims_ = std::move(primitives);
-  items_.reserve(prims_.size());
-  for (const Primitive& p : prims_) {
-    LeafItem it;
-    if (const SphereShape* sphere = p.transform ? nullptr : std::get_if<SphereShape>(&p.shape)) {
-      it.sphere = *sphere;
-      it.kind = LeafItem::Kind::Sphere;
-    } else if (const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape)) {
-      it.plane = *plane;
-      it.kind = LeafItem::Kind::Plane;
-    }
-    it.material = p.material;
-    it.object = p.object;
-    it.unit = p.unit;
-    it.noShadow = p.noShadow;
-    it.opaque = p.opaque;
-    items_.push_back(it);
-  }
-  stats_.nodes = nodes_.size();
-  stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * (sizeof(Primitive) + sizeof(LeafItem));
-  for (const Primitive& p : prims_)
-    if (p.transform) stats_.bytes += sizeof(Transform);  // an upper bound: primitives may share one
-  stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Visits the leaves whose boxes the ray enters before `tMax` (which the visitor may
 // shrink), nearer child first; `leaf(i)` returning true ends the walk. Then the
@@ -585,13 +230,15 @@ std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates
 
 std::vector<LightBuffer::Occluder> Bvh::occluders() const {
   std::vector<LightBuffer::Occluder> out(boundedCount_);
-  for (uint32_t i = 0; i < boundedCount_; ++i) {
-    out[i].box = prims_[i].bounds();
-    if (items_[i].kind == LeafItem::Kind::Sphere) {
-      out[i].center = items_[i].sphere.center;
-      out[i].radius = std::fabs(items_[i].sphere.radius);
+  parallelBlocks(Blocks(boundedCount_, 0, 4096), 0, [&](size_t, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) {
+      out[i].box = prims_[i].bounds();
+      if (items_[i].kind == LeafItem::Kind::Sphere) {
+        out[i].center = items_[i].sphere.center;
+        out[i].radius = std::fabs(items_[i].sphere.radius);
+      }
     }
-  }
+  });
   return out;
 }
 

@@ -4,13 +4,17 @@
 #include "accel/light_buffer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+
+#include "parallel/parallel_for.h"
 
 namespace pvrt {
 
 namespace {
 
 constexpr double kInf = INFINITY;
+constexpr size_t kGrain = 2048;  // the fewest primitives of a block of the build
 
 struct Range {
   double lo, hi;
@@ -97,14 +101,26 @@ Footprint footprint(const RelativeBox& box, int face, int res) {
 // primitives, in radians; a face spans 2 in u), at most 256. Finer cells list fewer
 // primitives a segment misses but list each primitive in more cells; on 10^6 spheres 256
 // renders fastest (of 64 to 1024), and on 10^2 spheres two cells per size (of 1 to 8).
-int resolutionFor(const std::vector<LightBuffer::Occluder>& occluders, const Vec3& light) {
-  std::vector<float> size;
-  size.reserve(occluders.size());
-  for (const LightBuffer::Occluder& o : occluders) {
-    const Bounds& b = o.box;
-    const double d = length(b.centroid() - light);
-    if (d > 0 && std::isfinite(d)) size.push_back(float(length(b.extent()) / d));
+int resolutionFor(const std::vector<LightBuffer::Occluder>& occluders, const Vec3& light, int threads) {
+  // The sizes a block at a time (the median does not depend on their order).
+  const Blocks blocks(occluders.size(), threads, kGrain);
+  std::vector<size_t> first(blocks.count + 1, 0);
+  std::vector<float> size(occluders.size());
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    size_t n = lo;
+    for (size_t i = lo; i < hi; ++i) {
+      const Bounds& box = occluders[i].box;
+      const double d = length(box.centroid() - light);
+      if (d > 0 && std::isfinite(d)) size[n++] = float(length(box.extent()) / d);
+    }
+    first[b + 1] = n - lo;
+  });
+  size_t n = 0;  // the sizes moved down over the gaps the blocks left
+  for (size_t b = 0; b < blocks.count; ++b) {
+    if (n != blocks.begin(b)) std::copy_n(size.begin() + ptrdiff_t(blocks.begin(b)), first[b + 1], size.begin() + ptrdiff_t(n));
+    n += first[b + 1];
   }
+  size.resize(n);
   if (size.empty()) return 8;
   std::nth_element(size.begin(), size.begin() + size.size() / 2, size.end());
   const double median = size[size.size() / 2];
@@ -193,52 +209,77 @@ void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& con
 
 }  // namespace
 
-LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders)
-    : light_(light), res_(resolutionFor(occluders, light)) {
+LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads)
+    : light_(light), res_(resolutionFor(occluders, light, threads)) {
   const size_t cells = 6 * size_t(res_) * res_;
   const size_t budget = kEntriesPerPrimitive * occluders.size() + 65536;
   const CellCones cones(res_);
-  // Every (cell, entry) pair as the footprints and cones give them, in primitive order,
-  // then moved to their cells: each footprint and cone is worked out once.
+  // Every (cell, entry) pair as the footprints and cones give them, a block of primitives at
+  // a time, then moved to their cells: each footprint and cone is worked out once.
   struct Listing {
     uint32_t cell;
     Entry entry;
   };
-  std::vector<Listing> listings;
-  listings.reserve(2 * occluders.size());
-  std::vector<uint32_t> count(cells + 1, 0);
-  for (uint32_t i = 0; i < occluders.size(); ++i) {
-    if (occluders[i].box.empty()) continue;
-    const RelativeBox box(occluders[i].box, light);
-    Footprint f[6];
-    int cellsSeen = 0;
-    for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res_)).cells();
-    if (box.holdsLight() || cellsSeen > kCrowded) {
-      everywhere_.push_back(i);
-      continue;
+  struct Part {
+    std::vector<Listing> listings;
+    std::vector<uint32_t> everywhere;
+  };
+  const Blocks blocks(occluders.size(), threads, kGrain);
+  std::vector<Part> parts(blocks.count);
+  std::atomic<size_t> listed{0};  // by the blocks done so far
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    Part& part = parts[b];
+    part.listings.reserve(2 * (hi - lo));
+    for (size_t i = lo; i < hi; ++i) {
+      if (occluders[i].box.empty()) continue;
+      const RelativeBox box(occluders[i].box, light);
+      Footprint f[6];
+      int cellsSeen = 0;
+      for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res_)).cells();
+      if (box.holdsLight() || cellsSeen > kCrowded) {
+        part.everywhere.push_back(uint32_t(i));
+        continue;
+      }
+      const Entry e{roundDown(box.distance()), uint32_t(i)};
+      forEachCell(f, coneOf(occluders[i], light), cones, res_,
+                  [&](int c) { part.listings.push_back({uint32_t(c), e}); });
+      // No buffer (below) once the budget is spent: no need to list the rest.
+      if (part.listings.size() > budget || listed.load(std::memory_order_relaxed) > budget) break;
     }
-    const Entry e{roundDown(box.distance()), i};
-    forEachCell(f, coneOf(occluders[i], light), cones, res_, [&](int c) {
-      ++count[size_t(c) + 1];
-      listings.push_back({uint32_t(c), e});
-    });
-    if (listings.size() > budget) break;  // no buffer (below), and no need to list the rest
-  }
-  if (everywhere_.size() > kMaxEverywhere || listings.size() > budget) {
+    listed += part.listings.size();
+  });
+  for (const Part& part : parts) everywhere_.insert(everywhere_.end(), part.everywhere.begin(), part.everywhere.end());
+  if (everywhere_.size() > kMaxEverywhere || listed > budget) {
     // Too many primitives too big for cells: the BVH answers this light's segments better.
     everywhere_.clear();
     return;
   }
-  for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
-  offsets_ = count;
-  entries_.resize(offsets_[cells]);
-  for (const Listing& l : listings) entries_[count[l.cell]++] = l.entry;
-  std::vector<Listing>().swap(listings);
+  // Each cell's entries in the order the blocks happen to put them there, then sorted: the
+  // lists are the same whatever that order.
+  std::vector<std::atomic<uint32_t>> filled(cells);
+  parallelIndices(parts.size(), threads, [&](size_t b) {
+    for (const Listing& l : parts[b].listings) filled[l.cell].fetch_add(1, std::memory_order_relaxed);
+  });
+  offsets_.resize(cells + 1);
+  offsets_[0] = 0;
   for (size_t c = 0; c < cells; ++c) {
-    std::sort(entries_.begin() + offsets_[c], entries_.begin() + offsets_[c + 1], [](const Entry& x, const Entry& y) {
-      return x.near < y.near || (x.near == y.near && x.primitive < y.primitive);
-    });
+    offsets_[c + 1] = offsets_[c] + filled[c].load(std::memory_order_relaxed);
+    filled[c].store(offsets_[c], std::memory_order_relaxed);
   }
+  entries_.resize(offsets_[cells]);
+  parallelIndices(parts.size(), threads, [&](size_t b) {
+    for (const Listing& l : parts[b].listings)
+      entries_[filled[l.cell].fetch_add(1, std::memory_order_relaxed)] = l.entry;
+    std::vector<Listing>().swap(parts[b].listings);
+  });
+  constexpr size_t kCellsAtATime = 1024;
+  parallelIndices((cells + kCellsAtATime - 1) / kCellsAtATime, threads, [&](size_t k) {
+    for (size_t c = k * kCellsAtATime; c < std::min(cells, (k + 1) * kCellsAtATime); ++c)
+      std::sort(entries_.begin() + offsets_[c], entries_.begin() + offsets_[c + 1],
+                [](const Entry& x, const Entry& y) {
+                  return x.near < y.near || (x.near == y.near && x.primitive < y.primitive);
+                });
+  });
 }
 
 int LightBuffer::cellIndexOf(const Vec3& d) const {

@@ -47,8 +47,9 @@ class LightBuffer {
   };
 
   LightBuffer() = default;
-  // `occluders[i]` is primitive i, for the first occluders.size() (bounded) primitives.
-  LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders);
+  // `occluders[i]` is primitive i, for the first occluders.size() (bounded) primitives. Built
+  // by up to `threads` threads (0: threadBudget()); the buffer is the same whatever the number.
+  LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads = 0);
 
   // Whether the buffer was built (see kMaxEverywhere).
   bool valid() const { return !offsets_.empty(); }

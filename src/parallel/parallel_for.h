@@ -3,6 +3,8 @@
 // parallel_for_omp.cpp is the only file that knows about OpenMP.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <functional>
 
 #include "parallel/schedule.h"
@@ -27,5 +29,26 @@ void parallelTeam(int workers, const std::function<void(int worker)>& team);
 // render (load, build, encode), whose results must not depend on which thread did what.
 // An exception thrown by a body ends the program, so bodies catch their own.
 void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body);
+
+// [0, n) cut into consecutive blocks of nearly equal size, for passes over big arrays whose
+// per-block results are then combined in block order: about four blocks for each of up to
+// `threads` threads (0: threadBudget()), none under `grain` indices (one block for a small n).
+// The combination must not depend on where the cuts fall (mins, maxes and integer sums do
+// not), since the thread count moves them.
+struct Blocks {
+  Blocks(size_t n, int threads, size_t grain) : n(n) {
+    const size_t team = size_t(threads > 0 ? threads : threadBudget());
+    count = std::max<size_t>(1, std::min(4 * team, n / std::max<size_t>(grain, 1)));
+  }
+  size_t begin(size_t b) const { return n * b / count; }
+  size_t end(size_t b) const { return n * (b + 1) / count; }
+  size_t n, count;
+};
+
+// Calls body(block, begin, end) for every block, on up to `threads` threads.
+inline void parallelBlocks(const Blocks& blocks, int threads,
+                           const std::function<void(size_t block, size_t begin, size_t end)>& body) {
+  parallelIndices(blocks.count, threads, [&](size_t b) { body(b, blocks.begin(b), blocks.end(b)); });
+}
 
 }  // namespace pvrt

@@ -1,18 +1,19 @@
 #include "render/scene.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <future>
-#include <thread>
+#include <numeric>
 
 #include "core/error.h"
+#include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
 namespace pvrt {
 
 namespace {
+
+constexpr size_t kObjectsAtATime = 1024;  // the fewest objects of a block of the build
 
 // Uniform scale factor s when the linear part is s times a rotation, else 0.
 double similarityScale(const Affine& a) {
@@ -35,9 +36,11 @@ bool isDiagonal(const Affine& a) {
 // POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
 Vec3 toFloat(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
 
+// Makes an object's primitives at `out` onward (advancing it), or with `out` null only
+// counts them.
 class PrimitiveBuilder {
  public:
-  PrimitiveBuilder(std::vector<Primitive>& out, uint32_t object, bool noShadow, const Affine& xf)
+  PrimitiveBuilder(Primitive*& out, uint32_t object, bool noShadow, const Affine& xf)
       : out_(out), object_(object), noShadow_(noShadow), xf_(xf), identity_(xf.isIdentity()) {}
 
   void operator()(const SphereDesc& s) {
@@ -116,21 +119,39 @@ class PrimitiveBuilder {
     add(shape, false);
   }
   void add(Shape shape, bool keepTransform) {
+    ++made_;
+    if (!out_) return;
     Primitive p{std::move(shape), nullptr, object_, object_, noShadow_};
     if (keepTransform && !identity_) {
       if (!shared_) shared_ = share(Transform::from(xf_));  // one for all the object's primitives
       p.transform = shared_;
     }
-    out_.push_back(std::move(p));
+    *out_++ = std::move(p);
   }
 
-  std::vector<Primitive>& out_;
+ public:
+  size_t made() const { return made_; }
+
+ private:
+  Primitive*& out_;
+  size_t made_ = 0;
   uint32_t object_;
   bool noShadow_;
   Affine xf_;
   bool identity_;
   SharedTransform shared_;
 };
+
+// The primitives an object makes: one, but for a mesh's triangles and a degenerate
+// smooth_triangle (none).
+size_t primitiveCount(const ObjectDesc& o) {
+  if (const MeshDesc* mesh = std::get_if<MeshDesc>(&o.shape)) return mesh->triangles.size() + mesh->smoothTriangles.size();
+  if (!std::holds_alternative<SmoothTriangleDesc>(o.shape)) return 1;
+  Primitive* none = nullptr;
+  PrimitiveBuilder count(none, 0, o.noShadow, o.transforms.combined());
+  std::visit(count, o.shape);
+  return count.made();
+}
 
 EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
   EffectSet e = 0;
@@ -160,23 +181,45 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
   s.background = desc.background;
   for (const LightDesc& l : desc.lights) s.lights.push_back(buildLight(l));
 
-  std::vector<Primitive> prims;
-  prims.reserve(desc.objects.size());  // one each, but for meshes (which grow it)
-  s.materials.reserve(desc.objects.size());
-  for (size_t i = 0; i < desc.objects.size(); ++i) {
-    const ObjectDesc& o = desc.objects[i];
-    const Affine xf = o.transforms.combined();
-    s.materials.add(o.material, xf);
-    std::visit(PrimitiveBuilder(prims, uint32_t(i), o.noShadow, xf), o.shape);
+  const std::vector<ObjectDesc>& objects = desc.objects;
+  const int threads = threadBudget();
+  s.materials.reserve(objects.size());
+  for (const ObjectDesc& o : objects) s.materials.add(o.material, o.transforms.combined());
+  // The primitives, a block of objects at a time: each block's counted, then made where the
+  // blocks before leave off.
+  const Blocks blocks(objects.size(), threads, kObjectsAtATime);
+  std::vector<size_t> first(blocks.count + 1, 0);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
+  });
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<Primitive> prims(first.back());
+  // Each block's primitives that hold the camera, and their bounds.
+  std::vector<std::vector<uint32_t>> interiors(blocks.count);
+  std::vector<Bounds> bounds(blocks.count);
+  const Vec3 eye = s.camera.location();
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    Primitive* out = prims.data() + first[b];
+    for (size_t i = lo; i < hi; ++i)
+      std::visit(PrimitiveBuilder(out, uint32_t(i), objects[i].noShadow, objects[i].transforms.combined()),
+                 objects[i].shape);
+    for (size_t k = first[b]; k < first[b + 1]; ++k) {
+      Primitive& p = prims[k];
+      if (p.inside(eye)) interiors[b].push_back(p.object);
+      p.opaque = s.materials[p.material].opaque;
+      bounds[b].extend(p.bounds());
+    }
+  });
+  Bounds scene;
+  for (size_t b = 0; b < blocks.count; ++b) {
+    for (uint32_t object : interiors[b])
+      if (s.cameraInteriors.find(object) < 0) s.cameraInteriors.push(object);
+    scene.extend(bounds[b]);
   }
-  for (const Primitive& p : prims)
-    if (p.inside(s.camera.location()) && s.cameraInteriors.find(p.object) < 0)
-      s.cameraInteriors.push(p.object);
-  for (Primitive& p : prims) p.opaque = s.materials[p.material].opaque;
-  Bounds objects;
-  for (const Primitive& p : prims) objects.extend(p.bounds());
-  s.tol = rayTolerances(objects, s.camera.location());
-  for (Primitive& p : prims) p.unit = float(s.tol.unit);
+  s.tol = rayTolerances(scene, eye);
+  parallelBlocks(Blocks(prims.size(), threads, kObjectsAtATime), threads, [&](size_t, size_t lo, size_t hi) {
+    for (size_t k = lo; k < hi; ++k) prims[k].unit = float(s.tol.unit);
+  });
   s.effects = deriveEffects(s, desc);
   if (release) std::vector<ObjectDesc>().swap(*release);
   s.bvh = Bvh(std::move(prims));
@@ -208,18 +251,8 @@ void buildLightBuffers(Scene& s) {
     if (!s.lights[j].area && !s.lights[j].shadowless) which.push_back(j);
   if (which.empty() || s.bvh.primitives().empty()) return;
   const std::vector<LightBuffer::Occluder> occluders = s.bvh.occluders();
-  // The buffers are independent, and each the same whatever the order: one light at a
-  // time on each of up to one thread a core.
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t k; (k = next++) < which.size();)
-      s.lightBuffers[which[k]] = LightBuffer(s.lights[which[k]].location, occluders);
-  };
-  const size_t threads = std::min<size_t>(which.size(), size_t(threadBudget()));
-  std::vector<std::future<void>> tasks;
-  for (size_t t = 1; t < threads; ++t) tasks.push_back(std::async(std::launch::async, work));
-  work();
-  for (auto& t : tasks) t.get();
+  // One light at a time, each built by every thread: a scene has fewer lights than threads.
+  for (size_t j : which) s.lightBuffers[j] = LightBuffer(s.lights[j].location, occluders);
   size_t bytes = 0;
   for (const LightBuffer& b : s.lightBuffers) bytes += b.bytes();
   s.prefetchLightBuffers = bytes > (size_t(16) << 20);

@@ -375,23 +375,41 @@ TEST(Bvh, CoincidentCentroidsStillBuildABalancedTree) {
 }
 
 // Building on several threads gives the very tree one thread builds: the same nodes, in
-// the same order, over the same primitive order.
+// the same order, over the same primitive order. 300,000 primitives take every parallel
+// path (nodes binned and partitioned by several threads, subtrees built and collapsed at the
+// same time, the primitives permuted in pieces): spheres, boxes, a slab of flat ones, a
+// heap with one centroid (no SAH split), and planes (unbounded) among them.
 TEST(Bvh, TheTreeDoesNotDependOnTheBuildThreads) {
   SceneMaker gen(35);
-  const auto prims = gen.spheres(90000, 50, 0.01, 0.3);
-  const Bvh one(prims, 1), many(prims, 8);
-  ASSERT_EQ(one.nodes().size(), many.nodes().size());
-  for (size_t i = 0; i < one.nodes().size(); ++i) {
-    const BvhNode &a = one.nodes()[i], &b = many.nodes()[i];
-    ASSERT_EQ(0, std::memcmp(a.quad, b.quad, sizeof a.quad)) << "node " << i;
-    ASSERT_EQ(0, std::memcmp(a.child, b.child, sizeof a.child)) << "node " << i;
-    ASSERT_EQ(0, std::memcmp(a.count, b.count, sizeof a.count)) << "node " << i;
-    ASSERT_EQ(a.used, b.used) << "node " << i;
+  auto prims = gen.spheres(250000, 50, 0.01, 0.3);
+  for (uint32_t i = 0; i < 40000; ++i) {
+    const Vec3 c = gen.point(50);
+    prims.push_back(make(BoxShape{{c.x, 0.5, c.z}, {c.x + 0.2, 0.5, c.z + 0.1}}, uint32_t(prims.size())));
   }
-  ASSERT_EQ(one.primitives().size(), many.primitives().size());
-  for (size_t i = 0; i < one.primitives().size(); ++i)
-    ASSERT_EQ(one.primitives()[i].object, many.primitives()[i].object) << "primitive " << i;
+  for (uint32_t i = 0; i < 10000; ++i) prims.push_back(make(SphereShape{{1, 2, 3}, 0.1 + 1e-5 * i}, uint32_t(prims.size())));
+  for (uint32_t i = 0; i < 3; ++i) {
+    const auto at = prims.begin() + std::ptrdiff_t(i * 100000);
+    prims.insert(at, make(PlaneShape{{0, 1, 0}, double(i)}, uint32_t(prims.size())));
+  }
+  const Bvh one(prims, 1);
   EXPECT_GT(one.stats().maxDepth, 6);
+  for (unsigned threads : {2u, 3u, 8u}) {
+    const Bvh many(prims, threads);
+    ASSERT_EQ(one.nodes().size(), many.nodes().size()) << threads << " threads";
+    for (size_t i = 0; i < one.nodes().size(); ++i) {
+      const BvhNode &a = one.nodes()[i], &b = many.nodes()[i];
+      ASSERT_EQ(0, std::memcmp(a.quad, b.quad, sizeof a.quad)) << "node " << i << ", " << threads << " threads";
+      ASSERT_EQ(0, std::memcmp(a.child, b.child, sizeof a.child)) << "node " << i << ", " << threads << " threads";
+      ASSERT_EQ(0, std::memcmp(a.count, b.count, sizeof a.count)) << "node " << i << ", " << threads << " threads";
+      ASSERT_EQ(a.used, b.used) << "node " << i << ", " << threads << " threads";
+    }
+    ASSERT_EQ(one.primitives().size(), many.primitives().size());
+    for (size_t i = 0; i < one.primitives().size(); ++i)
+      ASSERT_EQ(one.primitives()[i].object, many.primitives()[i].object) << "primitive " << i << ", " << threads;
+    EXPECT_EQ(one.stats().leaves, many.stats().leaves);
+    EXPECT_EQ(one.stats().maxDepth, many.stats().maxDepth);
+    EXPECT_EQ(one.stats().bytes, many.stats().bytes);
+  }
 }
 
 // Packets must give every ray exactly the answer the single-ray queries give, for

@@ -328,6 +328,48 @@ TEST(LightBuffer, ListsAreSortedAndHoldEveryPrimitive) {
   EXPECT_FALSE(buffer.cell({NAN, 1, 0}, none));
 }
 
+// Building on several threads gives the very buffer one thread builds: every cell's list,
+// and the primitives tested everywhere. 200,000 spheres, some boxes big enough to be tested
+// everywhere, take every parallel path (blocks of primitives listed at the same time, cells
+// filled and sorted at the same time).
+TEST(LightBuffer, TheBufferDoesNotDependOnTheBuildThreads) {
+  Maker gen(71);
+  auto prims = gen.scene(200000, 20, 0.01, 0.1);
+  for (int i = 0; i < 8; ++i) {
+    Primitive big;
+    const Vec3 c = gen.point(20);
+    big.shape = BoxShape{c - Vec3(4), c + Vec3(4)};
+    big.object = uint32_t(prims.size());
+    prims.insert(prims.begin() + 1000 * i, big);
+  }
+  const Bvh bvh(prims, 1);
+  const std::vector<LightBuffer::Occluder> occluders = bvh.occluders();
+  for (const Vec3& light : {Vec3{2, 30, 1}, Vec3{24, 5, -3}}) {
+    const LightBuffer one(light, occluders, 1);
+    ASSERT_TRUE(one.valid()) << light.x;
+    ASSERT_GT(one.entries(), occluders.size());
+    ASSERT_FALSE(one.everywhere().empty());
+    for (int threads : {2, 3, 8}) {
+      const LightBuffer many(light, occluders, threads);
+      ASSERT_EQ(one.resolution(), many.resolution()) << threads << " threads";
+      ASSERT_EQ(one.entries(), many.entries()) << threads << " threads";
+      for (int c = 0; c < 6 * one.resolution() * one.resolution(); ++c) {
+        const auto a = one.list(c), b = many.list(c);
+        ASSERT_EQ(a.size(), b.size()) << "cell " << c << ", " << threads << " threads";
+        for (size_t e = 0; e < a.size(); ++e) {
+          ASSERT_EQ(a[e].primitive, b[e].primitive) << "cell " << c << ", " << threads << " threads";
+          ASSERT_EQ(a[e].near, b[e].near) << "cell " << c << ", " << threads << " threads";
+        }
+      }
+      EXPECT_EQ(std::vector<uint32_t>(one.everywhere().begin(), one.everywhere().end()),
+                std::vector<uint32_t>(many.everywhere().begin(), many.everywhere().end()));
+    }
+  }
+  // A light with too many primitives around it has no buffer, on any number of threads.
+  const Vec3 crowded = occluders[0].box.centroid();
+  for (int threads : {1, 3}) EXPECT_EQ(LightBuffer(crowded, occluders, threads).valid(), LightBuffer(crowded, occluders, 1).valid());
+}
+
 // commonCell names a cell only when every direction of the box has it, and names the
 // cell of a box that is one direction.
 TEST(LightBuffer, CommonCellHoldsEveryDirectionOfTheBox) {

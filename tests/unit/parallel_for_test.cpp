@@ -1,15 +1,19 @@
 // The parallel seam: every item rendered once, and the CPU pinning of a render's threads
 // confined to the render (the caller's own CPU mask is the same afterwards).
 #include "parallel/parallel_for.h"
+#include "parallel/permute.h"
 
 #include <gtest/gtest.h>
 
 #include <sched.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <mutex>
+#include <random>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace pvrt {
@@ -58,6 +62,36 @@ TEST(ParallelFor, ThreadsArePinnedOnlyDuringTheRender) {
     EXPECT_EQ(cpusOfWorkers[0].size(), 1u);
     EXPECT_EQ(cpusOfWorkers[1].size(), 1u);
     EXPECT_NE(*cpusOfWorkers[0].begin(), *cpusOfWorkers[1].begin()) << "both workers on one CPU";
+  }
+}
+
+// permuteInPlace gives what a copy gathered slot by slot gives, on any number of threads,
+// for permutations of short cycles, one long cycle, fixed points, and a mix.
+TEST(PermuteInPlace, GivesTheGatheredOrder) {
+  const size_t n = 50000;
+  std::vector<std::vector<uint32_t>> orders;
+  std::vector<uint32_t> identity(n);
+  for (uint32_t i = 0; i < n; ++i) identity[i] = i;
+  orders.push_back(identity);
+  std::vector<uint32_t> swaps = identity;  // cycles of two
+  for (size_t i = 0; i + 1 < n; i += 2) std::swap(swaps[i], swaps[i + 1]);
+  orders.push_back(swaps);
+  std::vector<uint32_t> rotate(n);  // one cycle of every slot
+  for (uint32_t i = 0; i < n; ++i) rotate[i] = uint32_t((i + 7) % n);
+  orders.push_back(rotate);
+  std::vector<uint32_t> shuffled = identity;  // a few long cycles and some short ones
+  std::mt19937 rng(5);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  orders.push_back(shuffled);
+  for (const auto& order : orders) {
+    std::vector<std::string> want(n);
+    for (size_t j = 0; j < n; ++j) want[j] = "item " + std::to_string(order[j]);
+    for (int threads : {1, 3, 8}) {
+      std::vector<std::string> a(n);
+      for (size_t i = 0; i < n; ++i) a[i] = "item " + std::to_string(i);
+      permuteInPlace(a, order, threads);
+      ASSERT_EQ(a, want) << threads << " threads";
+    }
   }
 }
 

@@ -1,0 +1,685 @@
+// The BVH's build: a binned-SAH binary tree (centroids sorted into bins per axis, the
+// cheapest split kept), collapsed into the wide one.
+//
+// Every thread count builds the same tree, bit for bit. The nodes big enough to share (the
+// top of the tree) are built one at a time by all the threads together: each pass over their
+// items (bounds, bins, partition) is cut into blocks whose results are combined in block
+// order, and combine exactly (a box's min and max, a bin's count), so that they are what one
+// pass over all the items gives. The subtrees below them are then built at the same time,
+// each by one thread, into slots set aside for them.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <numeric>
+#include <type_traits>
+
+#include "accel/bvh.h"
+#include "core/lanes.h"
+#include "parallel/parallel_for.h"
+#include "parallel/permute.h"
+
+namespace pvrt {
+
+namespace {
+
+constexpr int kBins = 16;
+constexpr int kMaxLeafSize = 4;
+constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (stack of 64)
+constexpr double kTraversalCost = 1.0;  // relative to one primitive test
+constexpr double kIntersectionCost = 1.0;
+// A node of at least this many items, and at least 1/(8 x threads) of them all, is built by all
+// threads together; below it a subtree is built by one thread.
+constexpr uint32_t kSharedItems = 20000;
+constexpr size_t kGrain = 4096;  // the fewest items of a block of a pass over a shared node
+
+// n elements of T, left unwritten: the threads that fill them touch their pages first, rather
+// than one thread initialising them all beforehand. T is a scalar or an aggregate with a
+// trivial destructor (an implicit-lifetime type), so the storage holds T objects once allocated.
+template <class T>
+class RawArray {
+  static_assert((std::is_scalar_v<T> || std::is_aggregate_v<T>) && std::is_trivially_destructible_v<T>);
+
+ public:
+  explicit RawArray(size_t n) : data_(static_cast<T*>(std::malloc(std::max<size_t>(n, 1) * sizeof(T)))), size_(n) {
+    if (!data_) throw std::bad_alloc();
+  }
+  T& operator[](size_t i) { return data_.get()[i]; }
+  const T& operator[](size_t i) const { return data_.get()[i]; }
+  T* begin() { return data_.get(); }
+  size_t size() const { return size_; }
+
+ private:
+  struct Free {
+    void operator()(T* p) const { std::free(p); }
+  };
+  std::unique_ptr<T, Free> data_;
+  size_t size_;
+};
+
+// A node of the binary tree the build makes before it is collapsed.
+struct BuildNode {
+  Bounds bounds;
+  uint32_t rightOrFirst = 0;  // interior: right child (the left one is next); leaf: first primitive
+  uint32_t count = 0;         // 0 for interior nodes
+};
+
+struct BuildItem {
+  Bounds bounds;
+  Vec3 centroid;
+  uint32_t index;
+};
+
+// Bounds.extend() a vector at a time, for the build's passes over millions of items: the
+// min and max of all three axes in one operation each. A NaN in an item leaves the box as
+// it was, as Bounds.extend() does, so the tree is the same. Loads four doubles from each
+// Vec3 of a BuildItem (the fourth, the next field, is ignored).
+//
+// A bound changes only for a value below (above) it, never for an equal one (a zero of the
+// other sign): the box holds the first of the items' extreme values, whichever way they are
+// cut into blocks, as long as the blocks' boxes are merged in block order.
+struct BuildBox {
+  lanes::Double4 lo = lanes::splat(INFINITY), hi = lanes::splat(-INFINITY);
+  void extend(const Vec3& lo3, const Vec3& hi3) {
+    lo = lanes::minOr(lanes::load(&lo3.x), lo);
+    hi = lanes::maxOr(lanes::load(&hi3.x), hi);
+  }
+  // `later`'s items follow this box's.
+  void merge(const BuildBox& later) {
+    lo = lanes::minOr(later.lo, lo);
+    hi = lanes::maxOr(later.hi, hi);
+  }
+  Bounds bounds() const {
+    double l[4], h[4];
+    lanes::store(l, lo);
+    lanes::store(h, hi);
+    return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+  }
+};
+static_assert(offsetof(BuildItem, centroid) >= offsetof(BuildItem, bounds) + sizeof(Bounds) &&
+                  sizeof(BuildItem) >= offsetof(BuildItem, centroid) + 4 * sizeof(double),
+              "BuildBox reads four doubles from each Vec3 of a BuildItem");
+
+// A node's box and the box of its items' centroids.
+struct NodeBoxes {
+  BuildBox box, centroids;
+  void add(const BuildItem& it) {
+    box.extend(it.bounds.lo, it.bounds.hi);
+    centroids.extend(it.centroid, it.centroid);
+  }
+  void merge(const NodeBoxes& later) {
+    box.merge(later.box);
+    centroids.merge(later.centroids);
+  }
+};
+
+// Where a node's items fall along each axis: kBins bins over its centroids' extent.
+class Binning {
+ public:
+  explicit Binning(const Bounds& centroids) {
+    for (int axis = 0; axis < 3; ++axis) {
+      lo_[axis] = centroids.lo[axis];
+      const double extent = centroids.hi[axis] - lo_[axis];
+      binned_[axis] = extent > 0;
+      scale_[axis] = binned_[axis] ? kBins / extent : 0;
+    }
+  }
+  bool binned(int axis) const { return binned_[axis]; }
+  int bin(const BuildItem& it, int axis) const {
+    return std::min(kBins - 1, int((it.centroid[axis] - lo_[axis]) * scale_[axis]));
+  }
+
+ private:
+  bool binned_[3];
+  double lo_[3], scale_[3];
+};
+
+// Every axis's bins, filled in one pass over the items (a pass an axis read them three times).
+struct Bins {
+  std::array<std::array<BuildBox, kBins>, 3> box;
+  std::array<std::array<uint32_t, kBins>, 3> count{};
+  void add(const Binning& binning, const BuildItem& it) {
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!binning.binned(axis)) continue;
+      const size_t b = size_t(binning.bin(it, axis));
+      box[size_t(axis)][b].extend(it.bounds.lo, it.bounds.hi);
+      ++count[size_t(axis)][b];
+    }
+  }
+  void merge(const Bins& later) {
+    for (size_t axis = 0; axis < 3; ++axis)
+      for (size_t b = 0; b < kBins; ++b) {
+        box[axis][b].merge(later.box[axis][b]);
+        count[axis][b] += later.count[axis][b];
+      }
+  }
+};
+
+// The cheapest split between bins: axis -1 when no split leaves items on both sides.
+struct BinSplit {
+  int axis = -1, bin = 0;
+  double cost = INFINITY;  // area x count summed over both sides
+};
+
+BinSplit cheapest(const Bins& bins, const Binning& binning) {
+  BinSplit best;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!binning.binned(axis)) continue;
+    std::array<Bounds, kBins> binBounds;
+    for (int b = 0; b < kBins; ++b) binBounds[size_t(b)] = bins.box[size_t(axis)][size_t(b)].bounds();
+    const auto& binCount = bins.count[size_t(axis)];
+    // Sweep from the right to get the cost of every right side, then from the left.
+    std::array<double, kBins> rightArea{};
+    std::array<uint32_t, kBins> rightCount{};
+    Bounds acc;
+    uint32_t n = 0;
+    for (int b = kBins - 1; b > 0; --b) {
+      acc.extend(binBounds[size_t(b)]);
+      n += binCount[size_t(b)];
+      rightArea[size_t(b)] = acc.surfaceArea();
+      rightCount[size_t(b)] = n;
+    }
+    acc = Bounds{};
+    n = 0;
+    for (int b = 0; b < kBins - 1; ++b) {
+      acc.extend(binBounds[size_t(b)]);
+      n += binCount[size_t(b)];
+      const uint32_t right = rightCount[size_t(b + 1)];
+      if (n == 0 || right == 0) continue;
+      const double cost = acc.surfaceArea() * n + rightArea[size_t(b + 1)] * right;
+      if (cost < best.cost) best = {axis, b, cost};
+    }
+  }
+  return best;
+}
+
+// The passes over a node's items, on the calling thread alone.
+class SerialPasses {
+ public:
+  explicit SerialPasses(BuildItem* items) : items_(items) {}
+
+  NodeBoxes boxes(uint32_t begin, uint32_t end) const {
+    NodeBoxes b;
+    for (uint32_t i = begin; i < end; ++i) b.add(items_[i]);
+    return b;
+  }
+  Bins bins(uint32_t begin, uint32_t end, const Binning& binning) const {
+    Bins bins;
+    for (uint32_t i = begin; i < end; ++i) bins.add(binning, items_[i]);
+    return bins;
+  }
+  // Moves the items for which `left` holds before the others and returns where those start.
+  // The order is std::partition's (libstdc++'s, as the tree was first built): the first item
+  // out of place from the left is swapped with the first from the right, and so on.
+  template <class Left>
+  uint32_t partition(uint32_t begin, uint32_t end, Left&& left) const {
+    for (;;) {
+      while (begin != end && left(items_[begin])) ++begin;
+      if (begin == end) return begin;
+      --end;
+      while (begin != end && !left(items_[end])) --end;
+      if (begin == end) return begin;
+      std::swap(items_[begin], items_[end]);
+      ++begin;
+    }
+  }
+
+ private:
+  BuildItem* items_;
+};
+
+// The same passes by up to `threads` threads, for the nodes at the top of the tree.
+class SharedPasses {
+ public:
+  SharedPasses(BuildItem* items, size_t itemCount, int threads)
+      : items_(items), threads_(threads), left_(itemCount), scratch_(itemCount) {}
+
+  NodeBoxes boxes(uint32_t begin, uint32_t end) const {
+    const Blocks blocks(end - begin, threads_, kGrain);
+    std::vector<NodeBoxes> part(blocks.count);
+    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
+      part[b] = SerialPasses(items_).boxes(begin + uint32_t(lo), begin + uint32_t(hi));
+    });
+    for (size_t b = 1; b < part.size(); ++b) part[0].merge(part[b]);
+    return part[0];
+  }
+  Bins bins(uint32_t begin, uint32_t end, const Binning& binning) const {
+    const Blocks blocks(end - begin, threads_, kGrain);
+    std::vector<Bins> part(blocks.count);
+    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
+      part[b] = SerialPasses(items_).bins(begin + uint32_t(lo), begin + uint32_t(hi), binning);
+    });
+    for (size_t b = 1; b < part.size(); ++b) part[0].merge(part[b]);
+    return part[0];
+  }
+  // SerialPasses::partition's order, found in parallel: with m = begin + (items going left),
+  // the k-th item of [begin, m) that goes right (from the left) trades places with the k-th
+  // of [m, end) that goes left (from the right).
+  template <class Left>
+  uint32_t partition(uint32_t begin, uint32_t end, Left&& left) {
+    const Blocks blocks(end - begin, threads_, kGrain);
+    std::vector<uint32_t> lefts(blocks.count);
+    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
+      uint32_t n = 0;
+      for (size_t i = begin + lo; i < begin + hi; ++i) n += (left_[i] = left(items_[i]));
+      lefts[b] = n;
+    });
+    const uint32_t mid = begin + std::accumulate(lefts.begin(), lefts.end(), 0u);
+    // Where each block's misplaced items come in the two sequences: those going right are
+    // counted from the left, those going left from the right.
+    std::vector<uint32_t> firstRight(blocks.count + 1, 0), firstLeft(blocks.count + 1, 0);
+    for (size_t b = 0; b < blocks.count; ++b) {
+      const uint32_t lo = begin + uint32_t(blocks.begin(b)), hi = begin + uint32_t(blocks.end(b));
+      uint32_t goRight = 0;  // in [lo, min(hi, mid))
+      if (hi <= mid) goRight = (hi - lo) - lefts[b];
+      else
+        for (uint32_t i = lo; i < mid; ++i) goRight += !left_[i];
+      firstRight[b + 1] = firstRight[b] + goRight;
+    }
+    for (size_t b = blocks.count; b-- > 0;) {
+      const uint32_t lo = begin + uint32_t(blocks.begin(b)), hi = begin + uint32_t(blocks.end(b));
+      uint32_t goLeft = 0;  // in [max(lo, mid), hi)
+      if (lo >= mid) goLeft = lefts[b];
+      else
+        for (uint32_t i = mid; i < hi; ++i) goLeft += left_[i];
+      firstLeft[b] = firstLeft[b + 1] + goLeft;  // firstLeft[b + 1] counts the blocks after b
+    }
+    const uint32_t swaps = firstRight[blocks.count];
+    uint32_t* goingRight = scratch_.begin();              // positions, from the left
+    uint32_t* goingLeft = scratch_.begin() + (end - mid);  // positions, from the right
+    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
+      const uint32_t from = begin + uint32_t(lo), to = begin + uint32_t(hi);
+      uint32_t k = firstRight[b];
+      for (uint32_t i = from; i < std::min(to, mid); ++i)
+        if (!left_[i]) goingRight[k++] = i;
+      k = firstLeft[b + 1];
+      for (uint32_t i = to; i-- > std::max(from, mid);)
+        if (left_[i]) goingLeft[k++] = i;
+    });
+    const Blocks pairs(swaps, threads_, kGrain);
+    parallelBlocks(pairs, threads_, [&](size_t, size_t lo, size_t hi) {
+      for (size_t k = lo; k < hi; ++k) std::swap(items_[goingRight[k]], items_[goingLeft[k]]);
+    });
+    return mid;
+  }
+
+ private:
+  BuildItem* items_;
+  int threads_;
+  RawArray<uint8_t> left_;  // whether item i goes left
+  RawArray<uint32_t> scratch_;
+};
+
+}  // namespace
+
+namespace {
+
+// Builds the binary tree over `items`, reordering them as its leaves take them, into `nodes`
+// (room for 2 x items - 1). Depth first, each node's left child next to it, as one thread would
+// build it but for the slots that the shared nodes set aside for a subtree beyond those it
+// takes (the collapse follows the children, never the slots).
+class Builder {
+ public:
+  Builder(RawArray<BuildItem>& items, RawArray<BuildNode>& nodes, int threads)
+      : items_(items), nodes_(nodes), threads_(threads) {}
+
+  // Returns the number of nodes made.
+  uint32_t build() {
+    const uint32_t n = uint32_t(items_.size());
+    const uint32_t shared = std::max(kSharedItems, n / (8 * uint32_t(std::max(threads_, 1))));
+    uint32_t next = 0;
+    if (threads_ <= 1 || n < shared) {
+      subtree(0, n, 1, next);
+      return next;
+    }
+    SharedPasses passes(items_.begin(), n, threads_);
+    std::vector<Pending> pending;
+    top(passes, shared, 0, n, 1, next, pending);
+    // The biggest first, so that no thread is left with a big one at the end.
+    std::sort(pending.begin(), pending.end(), [](const Pending& a, const Pending& b) {
+      return a.end - a.begin > b.end - b.begin || (a.end - a.begin == b.end - b.begin && a.begin < b.begin);
+    });
+    std::vector<uint32_t> made(pending.size());
+    parallelIndices(pending.size(), threads_, [&](size_t k) {
+      const Pending& p = pending[k];
+      uint32_t at = p.slot;
+      subtree(p.begin, p.end, p.depth, at);
+      made[k] = at - p.slot;
+    });
+    return std::accumulate(made.begin(), made.end(), uint32_t(shared_.size()));
+  }
+
+  // The nodes built by the threads together, in increasing order.
+  const std::vector<uint32_t>& shared() const { return shared_; }
+
+ private:
+  // A subtree left to one thread: items [begin, end) from slot `slot`.
+  struct Pending {
+    uint32_t begin, end, slot;
+    int depth;
+  };
+
+  void top(SharedPasses& passes, uint32_t shared, uint32_t begin, uint32_t end, int depth, uint32_t& next,
+           std::vector<Pending>& pending) {
+    if (end - begin < shared) {
+      pending.push_back({begin, end, next, depth});
+      next += 2 * (end - begin) - 1;  // the most a binary tree over them takes
+      return;
+    }
+    const uint32_t self = next++;
+    shared_.push_back(self);
+    Bounds bounds;
+    const uint32_t mid = split(passes, begin, end, depth, bounds);
+    if (mid == end) {
+      nodes_[self] = {bounds, begin, end - begin};
+      return;
+    }
+    top(passes, shared, begin, mid, depth + 1, next, pending);
+    const uint32_t right = next;
+    top(passes, shared, mid, end, depth + 1, next, pending);
+    nodes_[self] = {bounds, right, 0};
+  }
+
+  void subtree(uint32_t begin, uint32_t end, int depth, uint32_t& next) {
+    const uint32_t self = next++;
+    Bounds bounds;
+    SerialPasses passes(items_.begin());
+    const uint32_t mid = split(passes, begin, end, depth, bounds);
+    if (mid == end) {
+      nodes_[self] = {bounds, begin, end - begin};
+      return;
+    }
+    subtree(begin, mid, depth + 1, next);
+    const uint32_t right = next;
+    subtree(mid, end, depth + 1, next);
+    nodes_[self] = {bounds, right, 0};
+  }
+
+  // The node's bounds, and where its items are split in two (having been partitioned), or
+  // `end` to make it a leaf.
+  template <class Passes>
+  uint32_t split(Passes& passes, uint32_t begin, uint32_t end, int depth, Bounds& bounds) {
+    const NodeBoxes boxes = passes.boxes(begin, end);
+    bounds = boxes.box.bounds();
+    const Bounds centroids = boxes.centroids.bounds();
+    const uint32_t count = end - begin;
+    if (count <= 1) return end;
+    if (depth >= kMaxSahDepth) return median(begin, end, centroids);
+    const Binning binning(centroids);
+    const BinSplit best = cheapest(passes.bins(begin, end, binning), binning);
+    if (best.axis < 0) {
+      // All centroids coincide: split in the middle if the leaf would be too big.
+      return count <= kMaxLeafSize ? end : begin + count / 2;
+    }
+    const double area = bounds.surfaceArea();
+    const double splitCost = kTraversalCost + (area > 0 ? kIntersectionCost * best.cost / area : INFINITY);
+    if (count <= kMaxLeafSize && splitCost >= kIntersectionCost * count) return end;
+    const uint32_t mid = passes.partition(
+        begin, end, [&](const BuildItem& it) { return binning.bin(it, best.axis) <= best.bin; });
+    if (mid == begin || mid == end) return begin + count / 2;
+    return mid;
+  }
+
+  uint32_t median(uint32_t begin, uint32_t end, const Bounds& centroids) {
+    if (end - begin <= kMaxLeafSize) return end;
+    const int axis = centroids.longestAxis();
+    const uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
+                     [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
+    return mid;
+  }
+
+  RawArray<BuildItem>& items_;
+  RawArray<BuildNode>& nodes_;
+  int threads_;
+  std::vector<uint32_t> shared_;
+};
+
+// Turns the binary tree into the wide one: each wide node takes the children of a binary
+// node, then keeps opening its largest interior child until it has kBvhWidth. The wide nodes
+// of the shared binary nodes are made first; then the subtrees below them at the same time,
+// each into a vector of its own; then all are put in place, depth first as one thread would.
+class Collapser {
+ public:
+  // `shared`: the binary nodes that the threads built together, in increasing order.
+  Collapser(const BuildNode* binary, const std::vector<uint32_t>& shared, int threads)
+      : binary_(binary), shared_(shared), threads_(threads) {}
+
+  void collapse(std::vector<BvhNode>& wide, BvhStats& stats) {
+    if (binary_[0].count > 0) {  // the whole tree is one leaf
+      wide.emplace_back();
+      wide[0].setChild(0, binary_[0].bounds, binary_[0].rightOrFirst, uint8_t(binary_[0].count));
+      stats.leaves = 1;
+      stats.maxDepth = 1;
+      return;
+    }
+    if (threads_ <= 1 || shared_.empty()) {
+      collapse(0, 1, wide, stats, nullptr);
+      return;
+    }
+    std::vector<BvhNode> top;
+    std::vector<Deferred> deferred;
+    collapse(0, 1, top, stats, &deferred);
+    parallelIndices(deferred.size(), threads_, [&](size_t k) {
+      Deferred& d = deferred[k];
+      collapse(d.binary, d.depth, d.nodes, d.stats, nullptr);
+    });
+    // Where the nodes go, depth first: each node of `top` is followed by its children's
+    // subtrees, in slot order, whether made in `top` or deferred.
+    struct Run {
+      bool deferred;
+      uint32_t index;  // into `top` or `deferred`
+    };
+    std::vector<Run> runs;
+    std::vector<uint32_t> place(top.size());
+    uint32_t next = 0;
+    const auto locate = [&](const auto& self, uint32_t t) -> void {
+      runs.push_back({false, t});
+      place[t] = next++;
+      const BvhNode& n = top[t];
+      for (int i = 0; i < n.used; ++i) {
+        if (n.count[i] > 0) continue;
+        if (n.child[i] & kDeferred) {
+          Deferred& d = deferred[n.child[i] & ~kDeferred];
+          runs.push_back({true, uint32_t(&d - deferred.data())});
+          d.at = next;
+          next += uint32_t(d.nodes.size());
+        } else {
+          self(self, n.child[i]);
+        }
+      }
+    };
+    locate(locate, 0);
+    for (BvhNode& n : top)
+      for (int i = 0; i < n.used; ++i)
+        if (n.count[i] == 0)
+          n.child[i] = n.child[i] & kDeferred ? deferred[n.child[i] & ~kDeferred].at : place[n.child[i]];
+    parallelIndices(deferred.size(), threads_, [&](size_t k) {
+      Deferred& d = deferred[k];
+      for (BvhNode& n : d.nodes)
+        for (int i = 0; i < n.used; ++i)
+          if (n.count[i] == 0) n.child[i] += d.at;
+    });
+    wide.reserve(next);
+    for (const Run& r : runs) {
+      if (!r.deferred) {
+        wide.push_back(top[r.index]);
+        continue;
+      }
+      const Deferred& d = deferred[r.index];
+      wide.insert(wide.end(), d.nodes.begin(), d.nodes.end());
+      stats.leaves += d.stats.leaves;
+      stats.maxDepth = std::max(stats.maxDepth, d.stats.maxDepth);
+    }
+  }
+
+ private:
+  static constexpr uint32_t kDeferred = 0x80000000u;
+
+  // A subtree left to one thread, from binary node `binary` at `depth`.
+  struct Deferred {
+    uint32_t binary;
+    int depth;
+    std::vector<BvhNode> nodes;
+    BvhStats stats;
+    uint32_t at = 0;  // where its nodes go
+  };
+
+  // Makes the wide node for binary node b and its subtree into `wide`, and returns its index
+  // there. With `deferred`, the subtrees below the shared nodes are left to it instead (their
+  // slots' child is kDeferred | their index there).
+  uint32_t collapse(uint32_t b, int depth, std::vector<BvhNode>& wide, BvhStats& stats,
+                    std::vector<Deferred>* deferred) {
+    stats.maxDepth = std::max(stats.maxDepth, depth);
+    const uint32_t self = uint32_t(wide.size());
+    wide.emplace_back();
+    uint32_t kids[kBvhWidth] = {b + 1, binary_[b].rightOrFirst};
+    int n = 2;
+    while (n < kBvhWidth) {
+      int open = -1;
+      double largest = -1;
+      for (int i = 0; i < n; ++i) {
+        const BuildNode& k = binary_[kids[i]];
+        if (k.count == 0 && k.bounds.surfaceArea() > largest) {
+          largest = k.bounds.surfaceArea();
+          open = i;
+        }
+      }
+      if (open < 0) break;
+      const uint32_t k = kids[open];
+      kids[open] = k + 1;
+      kids[n++] = binary_[k].rightOrFirst;
+    }
+    for (int i = 0; i < n; ++i) {
+      const BuildNode& k = binary_[kids[i]];
+      if (k.count > 0) {
+        ++stats.leaves;
+        stats.maxDepth = std::max(stats.maxDepth, depth + 1);
+        wide[self].setChild(i, k.bounds, k.rightOrFirst, uint8_t(k.count));
+      } else if (deferred && !std::binary_search(shared_.begin(), shared_.end(), kids[i])) {
+        wide[self].setChild(i, k.bounds, kDeferred | uint32_t(deferred->size()), 0);
+        deferred->push_back({kids[i], depth + 1, {}, {}});
+      } else {
+        const uint32_t child = collapse(kids[i], depth + 1, wide, stats, deferred);
+        wide[self].setChild(i, k.bounds, child, 0);
+      }
+    }
+    return self;
+  }
+
+  const BuildNode* binary_;
+  const std::vector<uint32_t>& shared_;
+  int threads_;
+};
+
+// The nearest float at or below / above v (NaN stays NaN, which every box test treats as
+// "may hit"; beyond the float range the bound becomes infinite, still conservative).
+float floatDown(double v) {
+  float f = float(v);
+  if (double(f) > v) f = std::nextafter(f, -INFINITY);
+  return f;
+}
+float floatUp(double v) {
+  float f = float(v);
+  if (double(f) < v) f = std::nextafter(f, INFINITY);
+  return f;
+}
+
+}  // namespace
+
+BvhNode::BvhNode() {
+  for (Quad& q : quad) {
+    for (int a = 0; a < 3; ++a) {
+      for (int c = 0; c < 4; ++c) {
+        q.lo[a][c] = INFINITY;
+        q.hi[a][c] = -INFINITY;
+      }
+    }
+  }
+}
+
+void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCount) {
+  Quad& q = quad[slot / 4];
+  for (int a = 0; a < 3; ++a) {
+    q.lo[a][slot % 4] = floatDown(b.lo[a]);
+    q.hi[a][slot % 4] = floatUp(b.hi[a]);
+  }
+  child[slot] = index;
+  count[slot] = leafCount;
+  used = uint8_t(std::max(int(used), slot + 1));
+}
+
+Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
+  const auto start = std::chrono::steady_clock::now();
+  const int threads = buildThreads > 0 ? int(buildThreads) : threadBudget();
+  const uint32_t total = uint32_t(primitives.size());
+  // The bounded primitives' items, in primitive order: each block's are counted, then written
+  // where the blocks before leave off.
+  const Blocks blocks(total, threads, kGrain);
+  std::vector<uint32_t> firstItem(blocks.count + 1, 0);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    uint32_t n = 0;
+    for (size_t i = lo; i < hi; ++i) n += !primitives[i].bounds().empty();
+    firstItem[b + 1] = n;
+  });
+  std::partial_sum(firstItem.begin(), firstItem.end(), firstItem.begin());
+  RawArray<BuildItem> items(firstItem.back());
+  std::vector<std::vector<uint32_t>> unbounded(blocks.count);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    uint32_t k = firstItem[b];
+    for (size_t i = lo; i < hi; ++i) {
+      const Bounds box = primitives[i].bounds();
+      if (box.empty()) unbounded[b].push_back(uint32_t(i));
+      else items[k++] = {box, box.centroid(), uint32_t(i)};
+    }
+  });
+  if (items.size() > 0) {
+    RawArray<BuildNode> binary(2 * items.size() - 1);
+    Builder builder(items, binary, threads);
+    const uint32_t made = builder.build();
+    nodes_.reserve(made / 2 + 1);  // a wide node takes at least one of the binary interior ones
+    Collapser(binary.begin(), builder.shared(), threads).collapse(nodes_, stats_);
+  }
+  // The order the primitives take: the bounded ones as the leaves have them, then the others.
+  std::vector<uint32_t> order(total);
+  boundedCount_ = uint32_t(items.size());
+  parallelBlocks(Blocks(items.size(), threads, kGrain), threads, [&](size_t, size_t lo, size_t hi) {
+    for (size_t j = lo; j < hi; ++j) order[j] = items[j].index;
+  });
+  items = RawArray<BuildItem>(0);
+  for (size_t b = 0, j = boundedCount_; b < unbounded.size(); ++b)
+    for (uint32_t i : unbounded[b]) order[j++] = i;
+  permuteInPlace(primitives, order, threads);
+  prims_ = std::move(primitives);
+  items_.resize(prims_.size());
+  std::vector<uint64_t> transformBytes(blocks.count, 0);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) {
+      const Primitive& p = prims_[i];
+      LeafItem& it = items_[i];
+      if (const SphereShape* sphere = p.transform ? nullptr : std::get_if<SphereShape>(&p.shape)) {
+        it.sphere = *sphere;
+        it.kind = LeafItem::Kind::Sphere;
+      } else if (const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape)) {
+        it.plane = *plane;
+        it.kind = LeafItem::Kind::Plane;
+      }
+      it.material = p.material;
+      it.object = p.object;
+      it.unit = p.unit;
+      it.noShadow = p.noShadow;
+      it.opaque = p.opaque;
+      if (p.transform) transformBytes[b] += sizeof(Transform);  // an upper bound: primitives may share one
+    }
+  });
+  stats_.nodes = nodes_.size();
+  stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * (sizeof(Primitive) + sizeof(LeafItem)) +
+                 std::accumulate(transformBytes.begin(), transformBytes.end(), uint64_t(0));
+  stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace pvrt
