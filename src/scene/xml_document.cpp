@@ -143,6 +143,11 @@ size_t firstBadCharacterReference(std::string_view s) {
   return std::string_view::npos;
 }
 
+bool isSceneText(std::string_view bytes) {
+  return firstNonTextByte(bytes) == std::string_view::npos &&
+         firstBadCharacterReference(bytes) == std::string_view::npos;
+}
+
 void checkSceneText(std::string_view bytes, const std::string& name) {
   if (const size_t bad = firstNonTextByte(bytes); bad != std::string_view::npos) {
     const auto c = static_cast<unsigned char>(bytes[bad]);

@@ -31,6 +31,9 @@ size_t utf8SequenceLength(std::string_view s, size_t i);
 // the attribute value short.
 size_t firstBadCharacterReference(std::string_view bytes);
 
+// Whether checkSceneText() would pass `bytes`: a piece of a file, whose check is left to the
+// whole file's (for its message) only when it fails.
+bool isSceneText(std::string_view bytes);
 // Refuses what is not XML text (firstNonTextByte, firstBadCharacterReference) with a
 // `file:line:` pvrt::Error; `name` stands for the file in messages.
 void checkSceneText(std::string_view bytes, const std::string& name);

@@ -1,6 +1,7 @@
 #include "scene/xml_split.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace pvrt {
 
@@ -29,15 +30,15 @@ class Scanner {
     while (pos < s_.size() && (s_[pos] == ' ' || s_[pos] == '\t' || s_[pos] == '\r' || s_[pos] == '\n')) ++pos;
   }
   // At the '<' of a start tag: moves past its '>' (quoted attribute values may hold one);
-  // `empty` tells a self-closing tag.
+  // `empty` tells a self-closing tag. Most of a scene's bytes are attribute values: each is
+  // skipped with one memchr for its closing quote.
   bool startTag(bool& empty) {
-    char quote = 0;
     for (size_t i = pos + 1; i < s_.size(); ++i) {
       const char c = s_[i];
-      if (quote) {
-        if (c == quote) quote = 0;
-      } else if (c == '"' || c == '\'') {
-        quote = c;
+      if (c == '"' || c == '\'') {
+        const void* close = std::memchr(s_.data() + i + 1, c, s_.size() - i - 1);
+        if (!close) return false;
+        i = size_t(static_cast<const char*>(close) - s_.data());
       } else if (c == '>') {
         empty = s_[i - 1] == '/';
         pos = i + 1;
@@ -47,6 +48,12 @@ class Scanner {
       }
     }
     return false;
+  }
+  // At the '<' of a start tag: the tag's name, as far as the scan can tell.
+  std::string_view name() const {
+    size_t end = pos + 1;
+    while (end < s_.size() && std::strchr(" \t\r\n/>", s_[end]) == nullptr) ++end;
+    return s_.substr(pos + 1, end - pos - 1);
   }
   // At the '<' of an element's start tag: moves past the end of the element.
   bool element() {
@@ -83,7 +90,8 @@ int newlines(std::string_view s, size_t from, size_t to) {
 
 }  // namespace
 
-std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes) {
+std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
+                                     const std::function<bool(std::string_view name)>& counts) {
   Scanner scan(bytes);
   if (scan.at("\xEF\xBB\xBF")) scan.pos += 3;  // a UTF-8 byte order mark
   for (;;) {                                  // the prolog: declaration and comments
@@ -112,13 +120,15 @@ std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes) 
       continue;
     }
     if (scan.at("</")) break;  // the root's end tag
-    if (!scan.at("<") || scan.at("<!") || scan.at("<?") || !scan.element()) return std::nullopt;
+    if (!scan.at("<") || scan.at("<!") || scan.at("<?")) return std::nullopt;
+    if (counts && counts(scan.name())) ++piece.counted;
+    if (!scan.element()) return std::nullopt;
     ++split.elements;
     scan.lastElementEnd = scan.pos;
     if (scan.pos - piece.begin >= pieceBytes) {
       piece.end = scan.pos;
       split.pieces.push_back(piece);
-      piece = {scan.pos, scan.pos, piece.firstLine + newlines(bytes, piece.begin, scan.pos)};
+      piece = {scan.pos, scan.pos, piece.firstLine + newlines(bytes, piece.begin, scan.pos), 0};
     }
   }
   split.bodyEnd = scan.pos;
