@@ -29,6 +29,7 @@ struct XmlSplit {
   size_t bodyEnd = 0;    // where the root's end tag starts
   std::vector<XmlPiece> pieces;  // in file order, covering [bodyBegin, bodyEnd)
   size_t elements = 0;           // the root's child elements
+  int bodyLines = 0;             // newlines in [bodyBegin, bodyEnd)
 };
 
 // The root's children in pieces of at least `pieceBytes` bytes (but the last), each ending
