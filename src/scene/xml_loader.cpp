@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
-#include <map>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -32,13 +31,13 @@ using tinyxml2::XMLElement;
 // Every attribute each element may carry (docs/scene-format.md). The readers below check
 // the values; this table lets a misspelt name be refused before any value is read.
 const std::vector<std::string_view>& knownAttributes(std::string_view element) {
-  static const std::map<std::string_view, std::vector<std::string_view>> table = [] {
+  static const std::unordered_map<std::string_view, std::vector<std::string_view>> table = [] {
     const std::vector<std::string_view> object{"material", "no_shadow"};
     auto shape = [&](std::vector<std::string_view> own) {
       own.insert(own.end(), object.begin(), object.end());
       return own;
     };
-    return std::map<std::string_view, std::vector<std::string_view>>{
+    return std::unordered_map<std::string_view, std::vector<std::string_view>>{
         {"scene", {}},
         {"image", {"width", "height"}},
         {"global_settings", {"max_trace_level", "adc_bailout", "ambient_light"}},
