@@ -9,25 +9,52 @@
 
 namespace pvrt {
 
+namespace {
+
+// The whole pages of [data, data + bytes): those partly outside the range belong to the same
+// allocation or are mapped already, and madvise() takes page-aligned addresses.
+struct Pages {
+  uintptr_t begin = 0, end = 0;
+};
+Pages wholePages(const void* data, size_t bytes) {
+#if defined(__linux__)
+  const auto page = uintptr_t(sysconf(_SC_PAGESIZE));
+  return {(uintptr_t(data) + page - 1) & ~(page - 1), (uintptr_t(data) + bytes) & ~(page - 1)};
+#else
+  (void)data;
+  (void)bytes;
+  return {};
+#endif
+}
+
+void populate(Pages p) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  // A failure (an older kernel, no memory to spare yet) only leaves the faults to the writer.
+  (void)madvise(reinterpret_cast<void*>(p.begin), p.end - p.begin, MADV_POPULATE_WRITE);
+#else
+  (void)p;
+#endif
+}
+
+}  // namespace
+
 std::future<void> prefaultAsync(const void* data, size_t bytes, size_t minBytes) {
 #if defined(__linux__) && defined(MADV_POPULATE_WRITE)
   if (data == nullptr || bytes < minBytes) return {};
-  const auto page = uintptr_t(sysconf(_SC_PAGESIZE));
-  // Whole pages only: those partly outside the range belong to the same allocation or are
-  // mapped already, and madvise() takes page-aligned addresses.
-  const uintptr_t begin = (uintptr_t(data) + page - 1) & ~(page - 1);
-  const uintptr_t end = (uintptr_t(data) + bytes) & ~(page - 1);
-  if (end <= begin) return {};
-  return std::async(std::launch::async, [begin, end] {
-    // A failure (an older kernel, no memory to spare yet) only leaves the faults to the writer.
-    (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
-  });
+  const Pages p = wholePages(data, bytes);
+  if (p.end <= p.begin) return {};
+  return std::async(std::launch::async, [p] { populate(p); });
 #else
   (void)data;
   (void)bytes;
   (void)minBytes;
   return {};
 #endif
+}
+
+void prefault(const void* data, size_t bytes) {
+  const Pages p = wholePages(data, bytes);
+  if (data != nullptr && p.end > p.begin) populate(p);
 }
 
 }  // namespace pvrt

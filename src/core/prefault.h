@@ -15,4 +15,8 @@ namespace pvrt {
 // must outlive the returned future's wait (its destructor waits).
 std::future<void> prefaultAsync(const void* data, size_t bytes, size_t minBytes = size_t(64) << 20);
 
+// The same on the calling thread, whatever the size: for a memory that several threads
+// fault in a part each.
+void prefault(const void* data, size_t bytes);
+
 }  // namespace pvrt

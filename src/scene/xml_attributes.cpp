@@ -60,6 +60,25 @@ size_t distance(std::string_view a, std::string_view b) {
 
 std::string attr(const char* name) { return "attribute '" + std::string(name) + "'"; }
 
+bool separator(char c) { return c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r'; }
+
+// How many words `text` has (as words() cuts them); the first `max` of them go to `out`.
+// Without a vector: a big scene reads millions of vectors.
+size_t wordsIn(const char* text, std::string_view* out, size_t max) {
+  size_t n = 0;
+  for (const char* p = text; *p;) {
+    if (separator(*p)) {
+      ++p;
+      continue;
+    }
+    const char* start = p;
+    while (*p && !separator(*p)) ++p;
+    if (n < max) out[n] = std::string_view(start, size_t(p - start));
+    ++n;
+  }
+  return n;
+}
+
 }  // namespace
 
 std::string printable(std::string_view text, size_t max) {
@@ -85,7 +104,6 @@ std::string printable(std::string_view text, size_t max) {
 
 std::vector<std::string_view> words(const char* text) {
   std::vector<std::string_view> out;
-  auto separator = [](char c) { return c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r'; };
   for (const char* p = text; *p;) {
     if (separator(*p)) {
       ++p;
@@ -125,22 +143,31 @@ Error Attributes::missing(const char* name) const {
 }
 std::string Attributes::raw(const char* name) const { return e_->Attribute(name); }
 
-bool Attributes::has(const char* name) {
+const tinyxml2::XMLAttribute* Attributes::find(const char* name) {
   int i = 0;
   for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next(), ++i) {
     if (std::strcmp(a->Name(), name) == 0) {
       used_ |= uint64_t(1) << i;
-      return true;
+      return a;
     }
   }
-  return false;
+  return nullptr;
+}
+
+bool Attributes::has(const char* name) { return find(name) != nullptr; }
+
+void Attributes::numbers(const char* name, double* out, size_t count, const char* what) {
+  const tinyxml2::XMLAttribute* a = find(name);
+  if (!a) throw missing(name);
+  std::string_view w[3];
+  if (wordsIn(a->Value(), w, count) != count) throw error(attr(name) + what + quoted(name));
+  for (size_t i = 0; i < count; ++i) out[i] = parseNumber(name, w[i]);
 }
 
 double Attributes::number(const char* name) {
-  if (!has(name)) throw missing(name);
-  const auto w = words(e_->Attribute(name));
-  if (w.size() != 1) throw error(attr(name) + " must be one number, got " + quoted(name));
-  return parseNumber(name, w[0]);
+  double v;
+  numbers(name, &v, 1, " must be one number, got ");
+  return v;
 }
 
 double Attributes::nonNegative(const char* name, double fallback) {
@@ -170,10 +197,9 @@ int Attributes::integer(const char* name, int fallback, int lo, int hi) {
 }
 
 Vec3 Attributes::vec(const char* name) {
-  if (!has(name)) throw missing(name);
-  const auto w = words(e_->Attribute(name));
-  if (w.size() != 3) throw error(attr(name) + " must be a vector of 3 numbers, got " + quoted(name));
-  return {parseNumber(name, w[0]), parseNumber(name, w[1]), parseNumber(name, w[2])};
+  double v[3];
+  numbers(name, v, 3, " must be a vector of 3 numbers, got ");
+  return {v[0], v[1], v[2]};
 }
 
 Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
@@ -183,9 +209,10 @@ Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
 }
 
 Vec3 Attributes::vecOrScalar(const char* name) {
-  if (!has(name)) throw missing(name);
-  const auto w = words(e_->Attribute(name));
-  if (w.size() == 1) return Vec3(parseNumber(name, w[0]));
+  const tinyxml2::XMLAttribute* a = find(name);
+  if (!a) throw missing(name);
+  std::string_view w;
+  if (wordsIn(a->Value(), &w, 1) == 1) return Vec3(parseNumber(name, w));
   return vec(name);
 }
 

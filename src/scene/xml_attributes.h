@@ -15,6 +15,7 @@
 #include "core/vec3.h"
 
 namespace tinyxml2 {
+class XMLAttribute;
 class XMLElement;
 }
 
@@ -67,6 +68,10 @@ class Attributes {
   void done() const;
 
  private:
+  // The attribute `name`, marked as asked about; nullptr when the element has none.
+  const tinyxml2::XMLAttribute* find(const char* name);
+  // The attribute `name` as `count` numbers (a vector's, or a number's), or refused.
+  void numbers(const char* name, double* out, size_t count, const char* what);
   std::string raw(const char* name) const;
   std::string quoted(const char* name) const { return "\"" + printable(raw(name)) + "\""; }
 

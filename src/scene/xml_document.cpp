@@ -11,8 +11,10 @@
 #include <cctype>
 #include <cstring>
 #include <utility>
+#include <vector>
 
 #include "core/error.h"
+#include "parallel/parallel_for.h"
 
 namespace pvrt {
 
@@ -63,6 +65,39 @@ std::string readSceneBytes(const std::string& path) {
     bytes.append(buf, size_t(n));
   }
   return bytes;
+}
+
+SceneBytes::SceneBytes(const std::string& path) {
+  // Files below this are read by one thread (readSceneBytes), as are pipes and anything
+  // that changes size while it is read; readSceneBytes also says why a file cannot be read.
+  constexpr size_t kBig = size_t(32) << 20;
+  constexpr size_t kPart = size_t(8) << 20;
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+  struct stat st {};
+  if (f.fd >= 0 && ::fstat(f.fd, &st) == 0 && S_ISREG(st.st_mode) && size_t(st.st_size) >= kBig &&
+      size_t(st.st_size) <= kMaxSceneBytes) {
+    const size_t size = size_t(st.st_size);
+    std::unique_ptr<char[]> data(new char[size]);
+    std::vector<char> whole((size + kPart - 1) / kPart, 0);  // part i was read whole
+    parallelIndices(whole.size(), 0, [&](size_t i) {
+      const size_t begin = i * kPart, end = std::min(size, begin + kPart);
+      size_t at = begin;
+      while (at < end) {
+        const ssize_t n = ::pread(f.fd, data.get() + at, end - at, off_t(at));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        at += size_t(n);
+      }
+      whole[i] = at == end;
+    });
+    char past = 0;
+    if (std::find(whole.begin(), whole.end(), 0) == whole.end() && ::pread(f.fd, &past, 1, off_t(size)) == 0) {
+      data_ = std::move(data);
+      size_ = size;
+      return;
+    }
+  }
+  text_ = readSceneBytes(path);
 }
 
 size_t utf8SequenceLength(std::string_view s, size_t i) {
@@ -141,6 +176,11 @@ size_t firstBadCharacterReference(std::string_view s) {
     if (!ok) return i;
   }
   return std::string_view::npos;
+}
+
+bool isSceneText(std::string_view bytes) {
+  return firstNonTextByte(bytes) == std::string_view::npos &&
+         firstBadCharacterReference(bytes) == std::string_view::npos;
 }
 
 void checkSceneText(std::string_view bytes, const std::string& name) {

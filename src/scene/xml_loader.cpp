@@ -7,14 +7,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <future>
-#include <map>
+#include <exception>
 #include <optional>
 #include <set>
 #include <string_view>
+#include <unordered_map>
+#include <variant>
 
 #include "core/error.h"
 #include "core/prefault.h"
+#include "parallel/parallel_for.h"
+#include "parallel/threads.h"
 #include "scene/xml_attributes.h"
 #include "scene/xml_document.h"
 #include "scene/xml_split.h"
@@ -28,13 +31,13 @@ using tinyxml2::XMLElement;
 // Every attribute each element may carry (docs/scene-format.md). The readers below check
 // the values; this table lets a misspelt name be refused before any value is read.
 const std::vector<std::string_view>& knownAttributes(std::string_view element) {
-  static const std::map<std::string_view, std::vector<std::string_view>> table = [] {
+  static const std::unordered_map<std::string_view, std::vector<std::string_view>> table = [] {
     const std::vector<std::string_view> object{"material", "no_shadow"};
     auto shape = [&](std::vector<std::string_view> own) {
       own.insert(own.end(), object.begin(), object.end());
       return own;
     };
-    return std::map<std::string_view, std::vector<std::string_view>>{
+    return std::unordered_map<std::string_view, std::vector<std::string_view>>{
         {"scene", {}},
         {"image", {"width", "height"}},
         {"global_settings", {"max_trace_level", "adc_bailout", "ambient_light"}},
@@ -70,9 +73,66 @@ const std::vector<std::string_view>& knownAttributes(std::string_view element) {
   return it == table.end() ? none : it->second;
 }
 
+// `count` default objects, their memory faulted in by every thread first: a million
+// objects' descriptions are 0.7 GB of fresh memory, which the kernel clears at about 1.3 s a
+// GiB on one core of the 2-core VM, and constructing them is one thread's work.
+void makeRoom(std::vector<ObjectDesc>& objects, size_t count) {
+  objects.reserve(count);
+  const size_t bytes = count * sizeof(ObjectDesc);
+  constexpr size_t kChunk = size_t(8) << 20;
+  const char* data = reinterpret_cast<const char*>(objects.data());
+  parallelIndices((bytes + kChunk - 1) / kChunk, 0,
+                  [&](size_t i) { prefault(data + i * kChunk, std::min(kChunk, bytes - i * kChunk)); });
+  objects.resize(count);
+}
+
+// Whether a child of the root named `name` is an object (every other child is a setting, a
+// light, a named material, or an error).
+bool isObjectName(std::string_view name) {
+  static const std::set<std::string_view> shapes{"sphere", "plane", "box", "cylinder", "cone", "disc",
+                                                 "triangle", "smooth_triangle", "mesh"};
+  return shapes.count(name) > 0;
+}
+
+// A piece of a big file is read on its own, ahead of its turn (Loader::Mode::Ahead). What
+// such a reading cannot do, because it depends on the elements before the piece (a second
+// <camera>, a material's name already taken, a reference to a material), it leaves to the
+// in-order pass as one of these, already converted, in file order.
+struct Background {
+  Color color;
+};
+struct MaterialUse {
+  size_t object;     // the referring object's index in SceneDesc::objects
+  std::string name;  // the material's
+};
+struct Pending {
+  std::variant<CameraDesc, GlobalSettings, Background, ImageDesc, LightDesc, MaterialDesc, MaterialUse> item;
+  SourceLoc loc;        // the element's, for its errors
+  std::string element;  // its name, as errors show it
+};
+
+// What reading one piece ahead of its turn gave.
+struct PieceRead {
+  bool text = false;        // checkSceneText() would pass the piece
+  bool wellFormed = false;  // tinyxml2 parsed it
+  size_t elements = 0;      // its first elements, read; the next one (if any) failed, and is read again in order
+  size_t objects = 0;       // the objects among them, in their places in SceneDesc::objects
+  bool complete = false;    // every element was read
+  bool miscounted = false;  // the split's count of objects was not the piece's (then the file is read whole)
+  std::vector<Pending> pending;
+  std::exception_ptr failure;  // anything but a scene error (no memory, say)
+};
+
+// The split counted an object that the piece did not hold, or the other way round.
+struct Miscounted {};
+
 class Loader {
  public:
-  explicit Loader(const std::string& file) : file_(file) {}
+  // InOrder: elements are read in file order, each knowing everything before it. Ahead: a
+  // piece is read before the pieces in front of it, and leaves what depends on them pending.
+  enum class Mode { InOrder, Ahead };
+
+  explicit Loader(FileName file, Mode mode = Mode::InOrder) : file_(file), ahead_(mode == Mode::Ahead) {}
 
   // The whole file as one tree.
   SceneDesc load(const tinyxml2::XMLDocument& doc) {
@@ -87,50 +147,172 @@ class Loader {
   }
 
   // The file a piece at a time (scene/xml_split.h): `skeleton` is the file with the root's
-  // children blanked out (their lines kept), `pieces` hold them. While one piece is read
-  // into the scene, the next is parsed on another thread; pieces are read in file order, so
-  // the scene and its first error are those of load(). nullopt when a piece is not
-  // well-formed XML: only the whole file's parse can then tell which error comes first.
+  // children blanked out (their lines kept), `pieces` hold them. Every thread reads pieces on
+  // its own, each into its objects' places in the scene (known from the split's counts) and
+  // leaving what depends on earlier pieces pending; then one pass in file order settles the
+  // pending elements and reads again, from its failing element on, any piece that failed.
+  // So the scene and its first error are those of load(), whatever the number of threads.
+  // nullopt when a piece is not XML text or not well-formed XML: only the whole file's parse
+  // can then tell which error comes first.
   std::optional<SceneDesc> loadPieces(const tinyxml2::XMLDocument& skeleton, std::string_view bytes,
                                       const XmlSplit& split) {
     const size_t count = split.pieces.size();
-    tinyxml2::XMLDocument docs[2];  // piece k goes to docs[k % 2]
-    auto parse = [&](size_t k) {
-      const XmlPiece& p = split.pieces[k];
-      return docs[k % 2].Parse(bytes.data() + p.begin, p.end - p.begin) == tinyxml2::XML_SUCCESS;
-    };
-    std::future<bool> next;  // parsing the piece after the one being read
-    size_t wellFormed = 0;   // pieces [0, wellFormed) parsed without error
+    // The root's errors come after any malformed XML, but before any element's.
+    std::exception_ptr rootError;
     try {
       const XMLElement* root = begin(skeleton);
       if (root->FirstChildElement()) return std::nullopt;  // the skeleton's root should be empty
-      scene_.objects.reserve(split.elements);
-      // A million objects' descriptions are 0.7 GB of fresh memory: faulted in by the other
-      // core while this one parses and reads.
-      prefault_ = prefaultAsync(scene_.objects.data(), scene_.objects.capacity() * sizeof(ObjectDesc));
-      if (!parse(0)) return std::nullopt;
-      wellFormed = 1;
-      for (size_t k = 0; k < count; ++k) {
-        if (k + 1 < count) next = std::async(std::launch::async, parse, k + 1);
-        lineOffset_ = split.pieces[k].firstLine - 1;
-        for (const XMLElement* e = docs[k % 2].FirstChildElement(); e; e = e->NextSiblingElement()) element(e);
-        if (k + 1 < count) {
-          if (!next.get()) return std::nullopt;
-          wellFormed = k + 2;
-        }
-      }
     } catch (const Error&) {
-      // The whole file's parse refuses malformed XML anywhere before any element is read.
-      if (next.valid()) next.wait();  // its document is about to be parsed into again
-      for (size_t k = wellFormed; k < count; ++k)
-        if (!parse(k)) return std::nullopt;
-      throw;
+      rootError = std::current_exception();
     }
+    std::vector<size_t> first(count + 1, 0);  // piece k's objects go to [first[k], first[k + 1])
+    for (size_t k = 0; k < count; ++k) first[k + 1] = first[k] + split.pieces[k].counted;
+    if (!rootError) makeRoom(scene_.objects, first[count]);
+
+    std::vector<PieceRead> reads(count);
+    parallelIndices(count, 0, [&](size_t k) {
+      PieceRead& read = reads[k];
+      try {
+        const XmlPiece& p = split.pieces[k];
+        const std::string_view text = bytes.substr(p.begin, p.end - p.begin);
+        read.text = isSceneText(text);
+        if (!read.text) return;
+        tinyxml2::XMLDocument doc;
+        read.wellFormed = doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS;
+        if (read.wellFormed && !rootError)
+          Loader(file_, Mode::Ahead).readAhead(doc, p.firstLine - 1, scene_.objects, first[k], first[k + 1], read);
+      } catch (const Miscounted&) {
+        read.miscounted = true;
+      } catch (...) {
+        read.failure = std::current_exception();
+      }
+    });
+    for (const PieceRead& read : reads)
+      if (!read.text || !read.wellFormed || read.miscounted) return std::nullopt;
+    for (const PieceRead& read : reads)
+      if (read.failure) std::rethrow_exception(read.failure);
+    if (rootError) std::rethrow_exception(rootError);
+
+    try {
+      for (size_t k = 0; k < count; ++k) {
+        PieceRead& read = reads[k];
+        for (Pending& p : read.pending) settle(std::move(p));
+        if (read.complete) {
+          if (first[k] + read.objects != first[k + 1]) return std::nullopt;
+          continue;
+        }
+        // Its element number read.elements failed: read again from there, in order.
+        const XmlPiece& p = split.pieces[k];
+        tinyxml2::XMLDocument doc;
+        if (doc.Parse(bytes.data() + p.begin, p.end - p.begin) != tinyxml2::XML_SUCCESS) return std::nullopt;
+        const XMLElement* e = doc.FirstChildElement();
+        for (size_t i = 0; i < read.elements && e; ++i) e = e->NextSiblingElement();
+        lineOffset_ = p.firstLine - 1;
+        placeIn(scene_.objects, first[k] + read.objects, first[k + 1]);
+        for (; e; e = e->NextSiblingElement()) element(e);
+        if (next_ != end_) return std::nullopt;
+      }
+    } catch (const Miscounted&) {
+      return std::nullopt;
+    }
+    places_ = nullptr;
     lineOffset_ = 0;
     return std::move(scene_);
   }
 
  private:
+  // Reads the elements of a piece parsed on its own (Mode::Ahead), its objects into
+  // objects[first, last), into `read`; stops at the first element that fails.
+  void readAhead(const tinyxml2::XMLDocument& doc, int lineOffset, std::vector<ObjectDesc>& objects, size_t first,
+                 size_t last, PieceRead& read) {
+    lineOffset_ = lineOffset;
+    placeIn(objects, first, last);
+    read.complete = true;
+    for (const XMLElement* e = doc.FirstChildElement(); e; e = e->NextSiblingElement(), ++read.elements) {
+      try {
+        element(e);
+      } catch (const Error&) {
+        read.complete = false;  // the in-order pass reads it again, and fails there or earlier
+        break;
+      }
+    }
+    if (read.complete && next_ != end_) throw Miscounted{};
+    read.objects = next_ - first;
+    read.pending = std::move(pending_);
+  }
+
+  // Objects go to (*objects)[next, last) instead of being appended.
+  void placeIn(std::vector<ObjectDesc>& objects, size_t next, size_t last) {
+    places_ = &objects;
+    next_ = next;
+    end_ = last;
+  }
+  void add(ObjectDesc&& o) {
+    if (!places_) {
+      scene_.objects.push_back(std::move(o));
+      return;
+    }
+    if (next_ == end_) throw Miscounted{};
+    (*places_)[next_++] = std::move(o);
+  }
+
+  // Mode::Ahead: leaves what `e` gave to the in-order pass.
+  template <class Item>
+  void defer(const XMLElement* e, Item&& item) {
+    pending_.push_back({std::forward<Item>(item), locOf(e), printable(e->Name())});
+  }
+
+  // The in-order pass: what an element read ahead left pending, checked and applied as
+  // element() would have.
+  void settle(Pending&& p) {
+    auto fail = [&](const std::string& what) { return sceneError(p.loc, p.element, what); };
+    auto once = [&](bool& seen) {
+      if (seen) throw fail("may appear only once");
+      seen = true;
+    };
+    if (auto* c = std::get_if<CameraDesc>(&p.item)) {
+      once(haveCamera_);
+      scene_.camera = std::move(*c);
+    } else if (auto* g = std::get_if<GlobalSettings>(&p.item)) {
+      once(haveGlobals_);
+      scene_.globals = *g;
+    } else if (auto* b = std::get_if<Background>(&p.item)) {
+      once(haveBackground_);
+      scene_.background = b->color;
+    } else if (auto* i = std::get_if<ImageDesc>(&p.item)) {
+      if (scene_.image) throw fail("may appear only once");
+      scene_.image = *i;
+    } else if (auto* l = std::get_if<LightDesc>(&p.item)) {
+      scene_.lights.push_back(std::move(*l));
+    } else if (auto* m = std::get_if<MaterialDesc>(&p.item)) {
+      if (const auto taken = materialNamed(m->name)) throw fail(alreadyDefined(m->name, *taken));
+      addMaterial(std::move(*m));
+    } else if (auto* u = std::get_if<MaterialUse>(&p.item)) {
+      const auto index = materialNamed(u->name);
+      if (!index) throw fail(notDefined(u->name));
+      ObjectDesc& o = scene_.objects[u->object];
+      o.namedMaterial = int(*index);
+      o.material = scene_.materials[*index];
+    }
+  }
+
+  // The named material called `name`: its index in scene_.materials.
+  std::optional<size_t> materialNamed(const std::string& name) const {
+    const auto it = materialIndex_.find(name);
+    if (it == materialIndex_.end()) return std::nullopt;
+    return it->second;
+  }
+  void addMaterial(MaterialDesc&& m) {
+    materialIndex_.emplace(m.name, scene_.materials.size());
+    scene_.materials.push_back(std::move(m));
+  }
+  std::string alreadyDefined(const std::string& name, size_t other) const {
+    return "material '" + name + "' is already defined at line " + std::to_string(scene_.materials[other].loc.line);
+  }
+  static std::string notDefined(const std::string& name) {
+    return "no material named '" + printable(name) + "' is defined before it";
+  }
+
   // The checks of the document and its root; the root.
   const XMLElement* begin(const tinyxml2::XMLDocument& doc) {
     const XMLElement* root = doc.RootElement();
@@ -156,27 +338,37 @@ class Loader {
   void element(const XMLElement* e) {
     noText(e);
     const std::string name = e->Name();
+    // Read ahead, the checks that depend on earlier elements wait for settle().
     if (name == "camera") {
+      if (ahead_) return defer(e, camera(e));
       once(e, haveCamera_);
       scene_.camera = camera(e);
     } else if (name == "global_settings") {
+      if (ahead_) return defer(e, globals(e));
       once(e, haveGlobals_);
       scene_.globals = globals(e);
     } else if (name == "background") {
-      once(e, haveBackground_);
+      if (!ahead_) once(e, haveBackground_);
       Attributes a = attrs(e);
-      scene_.background = a.color("color", {0, 0, 0});
+      const Color color = a.color("color", {0, 0, 0});
       a.done();
       noChildren(e);
+      if (ahead_) return defer(e, Background{color});
+      scene_.background = color;
     } else if (name == "image") {
+      if (ahead_) return defer(e, image(e));
       if (scene_.image) throw sceneError(locOf(e), name, "may appear only once");
       scene_.image = image(e);
     } else if (name == "light_source") {
+      if (ahead_) return defer(e, light(e));
       scene_.lights.push_back(light(e));
     } else if (name == "material") {
-      scene_.materials.push_back(namedMaterial(e));
+      if (ahead_) return defer(e, namedMaterial(e));
+      addMaterial(namedMaterial(e));
     } else {
-      scene_.objects.push_back(object(e));
+      std::optional<std::string> use;  // read ahead: the named material it uses, pending
+      add(object(e, use));
+      if (use) defer(e, MaterialUse{next_ - 1, std::move(*use)});
     }
   }
 
@@ -325,9 +517,8 @@ class Loader {
                               "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") !=
                               std::string::npos)
       throw a.error("material names use letters, digits and '_' only, got \"" + printable(m.name) + "\"");
-    for (const MaterialDesc& other : scene_.materials)
-      if (other.name == m.name)
-        throw a.error("material '" + m.name + "' is already defined at line " + std::to_string(other.loc.line));
+    if (!ahead_)
+      if (const auto other = materialNamed(m.name)) throw a.error(alreadyDefined(m.name, *other));
     a.done();
     noText(e);
     bool pig = false, fin = false, inte = false;
@@ -501,11 +692,10 @@ class Loader {
       throw errorAt(e, "its transforms together scale by more than 1e15 or less than 1e-15, or move by more than 1e15");
   }
 
-  ObjectDesc object(const XMLElement* e) {
+  // Read ahead, a named material's name goes to `use` instead of its copy to the object.
+  ObjectDesc object(const XMLElement* e, std::optional<std::string>& use) {
     const std::string name = e->Name();
-    static const std::set<std::string> shapes{"sphere", "plane", "box", "cylinder", "cone", "disc",
-                                              "triangle", "smooth_triangle", "mesh"};
-    if (!shapes.count(name))
+    if (!isObjectName(name))
       throw errorAt(e, "unknown element (expected camera, light_source, material, an object, ...)");
     Attributes a = attrs(e);
     ObjectDesc o;
@@ -555,12 +745,17 @@ class Loader {
     } else {
       o.shape = MeshDesc{};
     }
-    if (a.has("material")) {
-      const std::string ref = a.text("material");
-      for (size_t i = 0; i < scene_.materials.size(); ++i)
-        if (scene_.materials[i].name == ref) o.namedMaterial = int(i);
-      if (o.namedMaterial < 0) throw a.error("no material named '" + printable(ref) + "' is defined before it");
-      o.material = scene_.materials[size_t(o.namedMaterial)];
+    const bool named = a.has("material");
+    if (named) {
+      std::string ref = a.text("material");
+      if (ahead_) {
+        use = std::move(ref);
+      } else {
+        const auto index = materialNamed(ref);
+        if (!index) throw a.error(notDefined(ref));
+        o.namedMaterial = int(*index);
+        o.material = scene_.materials[*index];
+      }
     }
     o.noShadow = a.boolean("no_shadow", false);
     a.done();
@@ -586,10 +781,9 @@ class Loader {
           continue;
         }
       }
-      if (o.namedMaterial >= 0 && (std::strcmp(c->Name(), "pigment") == 0 ||
-                                   std::strcmp(c->Name(), "finish") == 0 ||
-                                   std::strcmp(c->Name(), "interior") == 0))
-        throw errorAt(c, "the object already uses material '" + o.material.name + "'");
+      if (named && (std::strcmp(c->Name(), "pigment") == 0 || std::strcmp(c->Name(), "finish") == 0 ||
+                    std::strcmp(c->Name(), "interior") == 0))
+        throw errorAt(c, "the object already uses material '" + (ahead_ ? *use : o.material.name) + "'");
       if (!materialPart(c, o.material, pig, fin, inte))
         throw errorAt(c, "unknown element inside <" + name + ">");
     }
@@ -617,30 +811,41 @@ class Loader {
   }
 
   FileName file_;
+  bool ahead_ = false;  // Mode::Ahead
   SceneDesc scene_;
-  // Faulting in scene_.objects' storage; declared after scene_, so destroyed (and waited
-  // for) before it.
-  std::future<void> prefault_;
+  std::unordered_map<std::string, size_t> materialIndex_;  // scene_.materials by name
   bool haveCamera_ = false, haveGlobals_ = false, haveBackground_ = false;
   int lineOffset_ = 0;  // added to tinyxml2's line numbers: nonzero while reading a piece
+  // While a piece is read, its objects go to (*places_)[next_, end_) (see placeIn).
+  std::vector<ObjectDesc>* places_ = nullptr;
+  size_t next_ = 0, end_ = 0;
+  std::vector<Pending> pending_;  // Mode::Ahead: what settle() will do, in file order
 };
 
 // The file with the root's children replaced by their newlines alone: its declaration,
 // comments, root and what follows keep their lines.
 std::string skeletonOf(std::string_view bytes, const XmlSplit& split) {
   std::string out(bytes.substr(0, split.bodyBegin));
-  out.append(size_t(std::count(bytes.begin() + std::ptrdiff_t(split.bodyBegin),
-                                bytes.begin() + std::ptrdiff_t(split.bodyEnd), '\n')),
-             '\n');
+  out.append(size_t(split.bodyLines), '\n');
   out.append(bytes.substr(split.bodyEnd));
   return out;
 }
 
+// Pieces of about `pieceBytes`, or smaller when many threads parse them at once: their
+// trees together (tinyxml2's is about four times the text) then take no more memory than
+// two pieces of `pieceBytes` would, and there are enough of them to share out evenly.
+size_t pieceSize(size_t fileBytes, size_t pieceBytes) {
+  const size_t threads = size_t(std::max(1, threadBudget()));
+  const size_t even = std::min(fileBytes / (8 * threads), 2 * pieceBytes / threads);
+  return std::min(pieceBytes, std::max(size_t(64) << 10, even));
+}
+
 SceneDesc parse(std::string_view bytes, const std::string& name, const LoadOptions& options) {
   if (options.piecesRead) *options.piecesRead = 0;
-  checkSceneText(bytes, name);
   if (bytes.size() > options.pieceBytes) {
-    if (const std::optional<XmlSplit> split = splitXmlRoot(bytes, options.pieceBytes)) {
+    const std::optional<XmlSplit> split = splitXmlRoot(bytes, pieceSize(bytes.size(), options.pieceBytes), isObjectName);
+    // What lies around the pieces (the skeleton) is checked here, the pieces by the loader.
+    if (split && isSceneText(bytes.substr(0, split->bodyBegin)) && isSceneText(bytes.substr(split->bodyEnd))) {
       tinyxml2::XMLDocument skeleton;
       const std::string text = skeletonOf(bytes, *split);
       if (skeleton.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) {
@@ -652,6 +857,7 @@ SceneDesc parse(std::string_view bytes, const std::string& name, const LoadOptio
       }
     }
   }
+  checkSceneText(bytes, name);
   tinyxml2::XMLDocument doc;
   parseCheckedText(doc, bytes, name);
   SceneDesc s = Loader(name).load(doc);
@@ -666,7 +872,8 @@ SceneDesc loadSceneString(const std::string& xml, const std::string& name, const
 }
 
 SceneDesc loadSceneFile(const std::string& path, const LoadOptions& options) {
-  return parse(readSceneBytes(path), path, options);
+  const SceneBytes bytes(path);
+  return parse(bytes.view(), path, options);
 }
 
 }  // namespace pvrt

@@ -11,9 +11,10 @@
 namespace pvrt {
 
 struct LoadOptions {
-  // Files larger than this are parsed in pieces of about this size (scene/xml_split.h),
-  // the next on another thread while one is read, instead of as one tree; the scene and
-  // the errors are the same either way.
+  // Files larger than this are parsed in pieces of at most this size (scene/xml_split.h),
+  // smaller when many threads read them (threadBudget()), instead of as one tree. Every
+  // thread parses and reads pieces; the scene and the errors are the same either way, and
+  // for any number of threads.
   size_t pieceBytes = size_t(4) << 20;
   // When set, receives how many pieces were read (0: the file was parsed whole).
   size_t* piecesRead = nullptr;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -20,6 +21,7 @@ namespace pvrt {
 struct XmlPiece {
   size_t begin = 0, end = 0;  // byte offsets: whole elements of the root, with the space and comments around them
   int firstLine = 1;          // the file's line at `begin`
+  size_t counted = 0;         // its elements whose names `counts` (below) said yes to
 };
 
 struct XmlSplit {
@@ -27,10 +29,15 @@ struct XmlSplit {
   size_t bodyEnd = 0;    // where the root's end tag starts
   std::vector<XmlPiece> pieces;  // in file order, covering [bodyBegin, bodyEnd)
   size_t elements = 0;           // the root's child elements
+  int bodyLines = 0;             // newlines in [bodyBegin, bodyEnd)
 };
 
 // The root's children in pieces of at least `pieceBytes` bytes (but the last), each ending
-// after an element; nullopt when the scan gives up (see above).
-std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes);
+// after an element; nullopt when the scan gives up (see above). `counts`, when given, is
+// asked about the name of each of the root's children (the bytes up to the first space,
+// '/' or '>' of its start tag), so that a reader knows, before any piece is parsed, how many
+// elements of a kind come before each piece.
+std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
+                                     const std::function<bool(std::string_view name)>& counts = {});
 
 }  // namespace pvrt

@@ -6,10 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
+#include "parallel/threads.h"
+#include "scene/xml_writer.h"
 
 namespace pvrt {
 namespace {
@@ -1002,6 +1006,173 @@ TEST(XmlLoader, NothingIsHalfLoadedTheFirstErrorWins) {
   // The first problem in document order is reported, even with later ones present.
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"-1\"/>\n<bogus/>"),
                      "t.xml:2: error: sphere: attribute 'radius' must be positive, got -1");
+}
+
+// ---------------------------------------------------------------- a big file, read in pieces by many threads
+
+// The scene as text (sceneToXml: every value, and named materials by name) with every line
+// number the loader keeps and every object's material index; or the error.
+std::string outcomeOf(const std::string& xml, size_t pieceBytes, int threads, size_t* pieces = nullptr) {
+  setThreadBudget(threads);
+  std::string out;
+  try {
+    const SceneDesc s = loadSceneString(xml, "t.xml", {pieceBytes, pieces});
+    out = sceneToXml(s) + "\nlines:";
+    auto line = [&](const SourceLoc& loc) { out += " " + loc.file.str() + ":" + std::to_string(loc.line); };
+    auto transforms = [&](const TransformList& t) {
+      for (const TransformStep& step : t.steps) line(step.loc);
+    };
+    auto material = [&](const MaterialDesc& m) {
+      for (const SourceLoc& loc : {m.loc, m.pigment.loc, m.finish.loc, m.interior.loc}) line(loc);
+      transforms(m.pigment.transforms);
+    };
+    for (const SourceLoc& loc : {s.camera.loc, s.globals.loc, s.image ? s.image->loc : SourceLoc{}}) line(loc);
+    transforms(s.camera.transforms);
+    for (const LightDesc& l : s.lights) line(l.loc);
+    for (const MaterialDesc& m : s.materials) material(m);
+    for (const ObjectDesc& o : s.objects) {
+      line(o.loc);
+      out += " m" + std::to_string(o.namedMaterial);
+      material(o.material);
+      transforms(o.transforms);
+      if (const auto* mesh = std::get_if<MeshDesc>(&o.shape)) {
+        for (const TriangleDesc& t : mesh->triangles) line(t.loc);
+        for (const SmoothTriangleDesc& t : mesh->smoothTriangles) line(t.loc);
+      }
+    }
+  } catch (const Error& e) {
+    out = std::string("error: ") + e.what();
+  }
+  setThreadBudget(0);
+  return out;
+}
+
+constexpr size_t kWhole = std::numeric_limits<size_t>::max();
+
+// `xml` read in pieces of a few sizes by 1, 2, 3 and 8 threads gives what the whole file
+// parsed as one tree gives, which is returned.
+std::string expectSameWithAnyThreads(const std::string& xml) {
+  const std::string whole = outcomeOf(xml, kWhole, 1);
+  for (size_t pieceBytes : {size_t(1), size_t(150), size_t(1000)})
+    for (int threads : {1, 2, 3, 8}) {
+      size_t pieces = 0;
+      EXPECT_EQ(outcomeOf(xml, pieceBytes, threads, &pieces), whole)
+          << "pieces of " << pieceBytes << " bytes, " << threads << " threads";
+      if (whole.rfind("error: ", 0) != 0) {
+        EXPECT_GT(pieces, 2u);
+      }
+    }
+  return whole;
+}
+
+// Every kind of element, order-dependent ones (settings, named materials and references to
+// them) spread through a file of many pieces.
+std::string spreadScene() {
+  std::string xml =
+      "<?xml version=\"1.0\"?>\n<!-- pieces -->\n<scene>\n"
+      "  <image width=\"64\" height=\"40\"/>\n"
+      "  <light_source location=\"1 2 3\"/>\n"
+      "  <material name=\"red\"><pigment color=\"1 0 0\"><scale v=\"2\"/></pigment><finish phong=\"0.5\"/></material>\n"
+      "  <sphere center=\"0 0 0\" radius=\"1\" material=\"red\"/>\n";
+  for (int i = 0; i < 60; ++i) {
+    const std::string n = std::to_string(i);
+    xml += "  <sphere center=\"" + n + ".125 0.1 -" + n + "\" radius=\"0.3333333333333333\">\n"
+           "    <pigment color=\"0." + n + " 0.5 1e-3\"/>\n    <finish reflection=\"0.25\" diffuse=\"0.7\"/>\n"
+           "    <rotate v=\"0 " + n + " 0\"/>\n  </sphere>\n";
+    if (i == 7) xml += "  <camera location=\"0 1 -5\" look_at=\"0 0 0\"><translate v=\"0 1 0\"/></camera>\n";
+    if (i == 13) xml += "  <global_settings max_trace_level=\"7\"/>\n  <background color=\"0.1 0.2 0.3\"/>\n";
+    if (i == 20)
+      xml += "  <mesh material=\"red\"><triangle p1=\"0 0 0\" p2=\"1 0 0\" p3=\"0 1 0\"/>\n"
+             "    <smooth_triangle p1=\"0 0 0\" n1=\"0 0 1\" p2=\"1 0 0\" n2=\"0 0 1\" p3=\"0 1 0\" n3=\"0 0 1\"/></mesh>\n";
+    if (i == 25) xml += "  <light_source location=\"4 5 6\"><spotlight point_at=\"0 0 0\"/></light_source>\n";
+    if (i == 31) xml += "  <material name=\"glass\"><pigment color=\"1 1 1\" filter=\"0.9\"/><interior ior=\"1.5\"/></material>\n";
+    if (i > 31 && i % 5 == 0) xml += "  <box corner1=\"0 0 0\" corner2=\"1 1 1\" material=\"glass\"/>\n";
+    if (i > 40 && i % 7 == 0) xml += "  <plane material=\"red\" no_shadow=\"true\"/>\n";
+  }
+  return xml + "</scene>\n";
+}
+
+TEST(XmlLoader, PiecesReadByAnyNumberOfThreadsGiveTheWholeFilesScene) {
+  const std::string whole = expectSameWithAnyThreads(spreadScene());
+  ASSERT_EQ(whole.rfind("error: ", 0), std::string::npos) << whole;
+  const SceneDesc s = loadSceneString(spreadScene(), "t.xml", {kWhole});
+  EXPECT_EQ(s.objects.size(), 70u);  // 61 spheres, a mesh, 5 boxes, 3 planes
+  EXPECT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.globals.maxTraceLevel, 7);
+}
+
+// The element of `xml` (spreadScene()) starting with `at` replaced by `with`.
+std::string replaced(std::string xml, const std::string& at, const std::string& with) {
+  const size_t i = xml.find(at);
+  EXPECT_NE(i, std::string::npos) << at;
+  return xml.replace(i, at.size(), with);
+}
+
+// The first error in file order wins, whichever piece a thread finished first, also when
+// it depends on earlier pieces and a later piece has an error of its own.
+TEST(XmlLoader, PiecesReadByAnyNumberOfThreadsGiveTheFirstError) {
+  const std::string xml = spreadScene();
+  const std::string lateError = replaced(xml, "<sphere center=\"59.125", "<sphere radus=\"1\" center=\"59.125");
+  const std::string earlyError = replaced(xml, "<sphere center=\"3.125", "<sphere radus=\"1\" center=\"3.125");
+  struct Case {
+    std::string xml, want;
+  };
+  const std::vector<Case> cases{
+      {lateError, "sphere: unknown attribute 'radus'"},
+      // A second camera (the first is in an earlier piece), then an error of the sphere after it.
+      {replaced(lateError, "<sphere center=\"40.125", "<camera/><sphere center=\"40.125"), "camera: may appear only once"},
+      {replaced(lateError, "<sphere center=\"40.125", "<image width=\"1\" height=\"1\"/><sphere center=\"40.125"),
+       "image: may appear only once"},
+      {replaced(lateError, "<sphere center=\"40.125", "<background/><global_settings/><sphere center=\"40.125"),
+       "background: may appear only once"},
+      // A material taken (in an earlier piece), used (in a later one) before it is defined.
+      {replaced(lateError, "<sphere center=\"40.125", "<material name=\"red\"/><sphere center=\"40.125"),
+       "material: material 'red' is already defined at line 6"},
+      {replaced(lateError, "<sphere center=\"20.125", "<sphere material=\"glass\" center=\"20.125"),
+       "sphere: no material named 'glass' is defined before it"},
+      {replaced(lateError, "<sphere center=\"20.125", "<sphere material=\"\" center=\"20.125"),
+       "sphere: no material named '' is defined before it"},
+      // The same element fails in two ways: the order-dependent check comes first.
+      {replaced(lateError, "<sphere center=\"20.125", "<sphere material=\"nothing\" center=\"20.125"),
+       "sphere: no material named 'nothing' is defined before it"},
+      {replaced(lateError, "<sphere center=\"40.125", "<camera right=\"0 0 0\"/><sphere center=\"40.125"),
+       "camera: may appear only once"},
+      {replaced(lateError, "<sphere center=\"40.125", "<material name=\"glass\"><bogus/></material><sphere center=\"40.125"),
+       "material: material 'glass' is already defined at line"},
+      // An earlier error of a piece of its own wins over an order-dependent one after it.
+      {replaced(earlyError, "<sphere center=\"40.125", "<camera/><sphere center=\"40.125"), "sphere: unknown attribute 'radus'"},
+      {replaced(earlyError, "<sphere center=\"40.125", "<sphere material=\"nothing\" center=\"40.125"),
+       "sphere: unknown attribute 'radus'"},
+      // Malformed XML anywhere comes first.
+      {replaced(earlyError, "</scene>", "<sphere></sphre></scene>"), "malformed XML"},
+  };
+  for (const Case& c : cases) {
+    const std::string got = expectSameWithAnyThreads(c.xml);
+    EXPECT_EQ(got.rfind("error: ", 0), 0u) << c.want;
+    EXPECT_NE(got.find(c.want), std::string::npos) << got;
+  }
+}
+
+// A material defined in one piece and used in later ones is the one object copies, and its
+// index is the same.
+TEST(XmlLoader, MaterialsUsedInLaterPiecesThanTheirDefinition) {
+  std::string xml = "<scene>\n";
+  for (int i = 0; i < 40; ++i) {
+    const std::string n = std::to_string(i);
+    xml += "<material name=\"m" + n + "\"><pigment color=\"0." + n + " 0 0\"/></material>\n";
+    xml += "<sphere center=\"0 0 " + n + "\" radius=\"1\" material=\"m" + std::to_string(i / 2) + "\"/>\n";
+  }
+  xml += "</scene>\n";
+  expectSameWithAnyThreads(xml);
+  setThreadBudget(3);
+  const SceneDesc s = loadSceneString(xml, "t.xml", {64});
+  setThreadBudget(0);
+  ASSERT_EQ(s.objects.size(), 40u);
+  EXPECT_EQ(s.objects[39].namedMaterial, 19);
+  EXPECT_EQ(s.objects[39].material.name, "m19");
+  EXPECT_EQ(s.objects[39].material.loc.line, 2 + 2 * 19);
+  EXPECT_EQ(s.objects[39].material.pigment.color.rgb.r, 0.19);
 }
 
 }  // namespace

@@ -56,6 +56,22 @@ TEST(XmlSplit, CutsAfterWholeChildrenOfTheRoot) {
   EXPECT_EQ(one->pieces[0].end, one->bodyEnd);
 }
 
+// The loader learns from the cut how many objects come before each piece.
+TEST(XmlSplit, CountsTheChildrenItIsAskedAbout) {
+  const std::string xml =
+      "<scene>\n<sphere/><camera/>\n<box\ncorner1='0'/><mesh><sphere/></mesh>\n"
+      "<!-- <sphere/> --><sphere>x</sphere><sphere2/></scene>";
+  const auto isSphere = [](std::string_view name) { return name == "sphere" || name == "box"; };
+  const std::optional<XmlSplit> split = splitXmlRoot(xml, 1, isSphere);
+  ASSERT_TRUE(split);
+  std::vector<size_t> counted;
+  for (const XmlPiece& p : split->pieces) counted.push_back(p.counted);
+  // Not the mesh, nor the sphere inside it, nor the one in a comment, nor the sphere2.
+  EXPECT_EQ(counted, (std::vector<size_t>{1, 0, 1, 0, 1, 0}));
+  EXPECT_EQ(splitXmlRoot(xml, 100, isSphere)->pieces.at(0).counted, 3u);
+  EXPECT_EQ(splitXmlRoot(xml, 100)->pieces.at(0).counted, 0u);
+}
+
 TEST(XmlSplit, GivesUpOnWhatItDoesNotExpect) {
   for (const char* xml : {
            "<!DOCTYPE scene>\n<scene><sphere/></scene>",  // a DOCTYPE
