@@ -45,7 +45,7 @@ slow)
   PVRT_SLOW_RANK=1:30 "${mpirun[@]}" -x PVRT_SLOW_RANK -np 3 "$pvrt" render "$scene" -o "$work/out.png" \
     --backend mpi --schedule dynamic --tile-size 8 --threads 1 -W 96 -H 60 --spp 4 --stats >"$work/stats" || exit 1
   cat "$work/stats"
-  # Rank table rows: rank items pixels ...; rank 0 is the master and renders nothing.
+  # Rank table rows: rank items pixels ... (rank 0, the master, renders between answers).
   slow=$(awk '$1 == "1" && NF == 9 { print $2 }' "$work/stats")
   fast=$(awk '$1 == "2" && NF == 9 { print $2 }' "$work/stats")
   echo "slow rank rendered $slow tiles, fast rank $fast"
