@@ -46,7 +46,7 @@ if [ "$quick" = --quick ]; then
   spheres=20000 reps=3 bench8k=--no-8k
 else
   scaling=(--runs 5 --max-p "$n" --only ceiling,openmp,mpi,hybrid,fig1)
-  spheres=1000000 reps=20 bench8k=
+  spheres=1000000 reps=20 bench8k=${MPIBENCH_8K-}
 fi
 [ -n "${SCALING_ARGS:-}" ] && eval "scaling=($SCALING_ARGS)"
 mkdir -p "$work/scaling"
