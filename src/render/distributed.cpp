@@ -209,7 +209,8 @@ class HeldItems {
 // else to do,
 // so it never takes a CPU from a worker. A worker asks for as many items as it has threads
 // and asks again as soon as it holds no more than that, so the answer comes while it
-// renders; every thread renders whole items, as OpenMP's tiles schedule does.
+// renders; every thread renders whole items, as OpenMP's tiles schedule does (thread 0 of
+// a rank with several threads a row at a time, minding the messages between rows).
 void renderDynamic(RankRenderer& local, int items, const DistributedSettings& d) {
   const int me = cluster::rank(), n = cluster::size();
   if (me == 0) {
@@ -254,17 +255,23 @@ void renderDynamic(RankRenderer& local, int items, const DistributedSettings& d)
   const int want = local.threads();
   cluster::WorkRequest request;
   HeldItems held;
+  // Thread 0 takes in answers and asks again; it does so between the rows of its own
+  // tiles, so the rank's other threads never wait for it to finish a tile.
+  const auto feed = [&] {
+    if (request.pending() && request.ready()) held.add(request.take());
+    if (!request.pending() && !held.done() && held.size() <= size_t(want)) request.post(want);
+  };
   local.team([&](int worker) {
     for (int i = -1;;) {
-      if (worker == 0) {
-        if (request.pending() && request.ready()) held.add(request.take());
-        if (!request.pending() && !held.done() && held.size() <= size_t(want)) request.post(want);
-      }
+      if (worker == 0) feed();
       const HeldItems::Next next = held.next(i);
       if (next == HeldItems::Next::Done) return;
       if (next == HeldItems::Next::Item) {
         maybeSlow(d);
-        local.renderItem(i, worker);
+        if (worker == 0 && want > 1)
+          local.renderItem(i, 0, feed);
+        else
+          local.renderItem(i, worker);
       } else if (worker == 0) {
         held.add(request.take());  // nothing to render until the answer comes
       } else {
