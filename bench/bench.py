@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""pvrt against POV-Ray 3.7 on the same scenes, and pvrt's parallel speedup (run through bench/run.sh).
+"""pvrt against POV-Ray 3.7 on the same scenes, and pvrt's parallel scaling (run through bench/run.sh).
 
 Every comparison renders the same scene at the same resolution with the same sample pattern and the
 same thread count: POV-Ray with `+A0.0 +AM1 +Rn -J` (or `-A` for n = 1), pvrt with `--sampler pov
@@ -53,7 +53,9 @@ def parse_args(argv):
                     help="largest random scene POV-Ray renders; larger ones are marked not run (default 1e4; quick 1e3)")
     ap.add_argument("--only", default="compare,scaling,speedup",
                     help="experiments to run, comma-separated: compare (fixed scenes), scaling (random scenes of "
-                         "10^2..10^6 spheres), speedup (pvrt on 1..nproc threads)")
+                         "10^2..10^6 spheres), speedup (bench/speedup.py: OpenMP schedules, MPI strategies and "
+                         "gathers, hybrid splits, up to --threads)")
+    ap.add_argument("--mpirun", default="mpirun", help="mpirun for the speedup experiment ('' leaves MPI out)")
     a = ap.parse_args(argv)
     quick = a.quick
     a.runs = a.runs if a.runs is not None else (2 if quick else 5)
@@ -66,6 +68,8 @@ def parse_args(argv):
     a.povray_max_objects = a.povray_max_objects if a.povray_max_objects is not None else (
         10 ** 3 if quick else 10 ** 4)
     a.only = set(a.only.split(","))
+    if os.sep in a.pvrt:  # the runs start in a work folder: a relative path must not depend on it
+        a.pvrt = os.path.abspath(a.pvrt)
     unknown = a.only - {"compare", "scaling", "speedup"}
     if unknown or a.runs < 1 or a.warmup < 0 or a.aa < 1 or a.threads < 1:
         ap.error("bad value: " + (", ".join(sorted(unknown)) if unknown else "runs/warmup/aa/threads"))
@@ -272,20 +276,6 @@ class Bench:
         except subprocess.CalledProcessError:
             return None
 
-    def speedup(self, name, xml):
-        a = self.args
-        n = a.threads
-        counts = list(range(1, n + 1)) if n <= 8 else sorted({1, n} | {2 ** k for k in range(1, 10) if 2 ** k < n})
-        if a.quick:
-            counts = sorted({1, n})
-        objects = scene_objects(xml)
-        png = os.path.join(self.work, name + ".speedup.png")
-        for r in range(a.warmup + a.runs):
-            measured = r >= a.warmup
-            for p in (counts if r % 2 == 0 else counts[::-1]):
-                self.measure("speedup", name, objects, "pvrt", r - a.warmup if measured else "warmup%d" % r, p,
-                             self.pvrt_cmd(xml, png, p), record=measured)
-
 
 # ---------------------------------------------------------------- summaries
 
@@ -325,7 +315,7 @@ def summarise(rows):
         out.append(s)
     # POV-Ray time / pvrt time, from the medians and from each alternating pair.
     for s in out:
-        if s["renderer"] != "pvrt" or s["experiment"] == "speedup":
+        if s["renderer"] != "pvrt":
             continue
         pov = next((p for p in out if p["renderer"] == "povray" and p["experiment"] == s["experiment"]
                     and p["scene"] == s["scene"] and p["threads"] == s["threads"] and p["runs"]), None)
@@ -341,14 +331,6 @@ def summarise(rows):
                 ratios = [b / a for a, b in pairs if a and b]
                 if ratios:
                     s["ratio_%s_min" % field], s["ratio_%s_max" % field] = min(ratios), max(ratios)
-    # Speedup and efficiency against one thread, from median render times.
-    for s in out:
-        if s["experiment"] == "speedup" and "render_s_median" in s:
-            one = next((p for p in out if p["experiment"] == "speedup" and p["scene"] == s["scene"]
-                        and p["threads"] == 1 and "render_s_median" in p), None)
-            if one:
-                s["speedup"] = one["render_s_median"] / s["render_s_median"]
-                s["efficiency"] = s["speedup"] / s["threads"]
     return out
 
 
@@ -441,16 +423,6 @@ def markdown(args, summary, meta, agreement, plots):
                 num(s.get("peak_rss_kib_median", 0) / 1024, "{:.1f}"), num(s.get("load_s_median"), "{:.4f}"),
                 num(s.get("bvh_build_s_median"), "{:.4f}")))
         L.append("")
-    sp = [s for s in summary if s["experiment"] == "speedup"]
-    if sp:
-        L += ["## pvrt parallel speedup (%s, tile schedule)" % sp[0]["scene"], "",
-              "Speedup: median render time on 1 thread / on P threads; efficiency: speedup / P.", "",
-              "| threads | render | wall | speedup | efficiency |", "|--:|--:|--:|--:|--:|"]
-        for s in sp:
-            L.append("| %d | %s | %s | %s | %s |" % (s["threads"], fmt_spread(s, "render_s"), fmt_spread(s, "wall_s"),
-                                                     num(s.get("speedup"), "{:.2f}"),
-                                                     num(s.get("efficiency"), "{:.0%}")))
-        L.append("")
     if plots:
         L += ["## Plots", ""] + ["![%s](%s)" % (p, p) for p in plots] + [""]
     return "\n".join(L)
@@ -505,28 +477,6 @@ def plot(out, summary):
         fig.savefig(os.path.join(out, "time_vs_objects.png"), dpi=110)
         plt.close(fig)
         made.append("time_vs_objects.png")
-
-    sp = [s for s in summary if s["experiment"] == "speedup" and "speedup" in s]
-    if sp:
-        fig, (ax, ax2) = plt.subplots(1, 2, figsize=(11, 4.5))
-        p = [s["threads"] for s in sp]
-        ax.plot(p, [s["speedup"] for s in sp], "o-", label="pvrt (tiles)")
-        ax.plot(p, p, "k:", label="ideal")
-        ax.set_xlabel("threads")
-        ax.set_ylabel("speedup (render time)")
-        ax2.plot(p, [100 * s["efficiency"] for s in sp], "o-")
-        ax2.set_xlabel("threads")
-        ax2.set_ylabel("efficiency %")
-        ax2.set_ylim(0, 110)
-        for a in (ax, ax2):
-            a.grid(True, alpha=0.3)
-            a.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
-        ax.legend()
-        fig.suptitle("parallel speedup, " + sp[0]["scene"])
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, "speedup.png"), dpi=110)
-        plt.close(fig)
-        made.append("speedup.png")
 
     ratio = [s for s in summary if s["renderer"] == "pvrt" and "ratio_wall_s" in s]
     if ratio:
@@ -602,8 +552,16 @@ def main(argv):
                 xml = scenes.spheres(n)
                 bench.compare_pair("scaling", "spheres_%d" % n, xml, n <= args.povray_max_objects)
                 n *= 10
+        speedup_md = ""
         if "speedup" in args.only:
-            bench.speedup("paper1", os.path.join(ROOT, "scenes", "paper1.xml"))
+            import speedup
+            sp_args = ["--out", args.out, "--pvrt", args.pvrt, "--mpirun", args.mpirun, "--max-p", str(args.threads),
+                       "--width", str(args.width), "--height", str(args.height), "--spp", str(args.aa ** 2),
+                       "--runs", str(args.runs)] + (["--quick"] if args.quick else [])
+            if speedup.main(sp_args) != 0:
+                print("bench: some speedup runs failed (see %s/logs)" % args.out)
+            with open(os.path.join(args.out, "scaling.md")) as f:
+                speedup_md = f.read()
         meta["bench time"] = "%.0f s" % (time.perf_counter() - started)
         write_csv(os.path.join(args.out, "results.csv"), bench.rows, RAW_FIELDS)
         summary = summarise(bench.rows)
@@ -611,6 +569,8 @@ def main(argv):
         plots = plot(args.out, summary)
         with open(os.path.join(args.out, "results.md"), "w") as f:
             f.write(markdown(args, summary, meta, bench.agreement, plots))
+            if speedup_md:
+                f.write("\n" + speedup_md)
         print("bench: wrote %s/results.csv, summary.csv, results.md%s" % (
             args.out, "".join(", " + p for p in plots)))
         failed = [r for r in bench.rows if r["status"].startswith("failed")]

@@ -54,6 +54,8 @@ def parse_args(argv):
     a.height = a.height or (100 if a.quick else 800)
     a.spp = a.spp or (4 if a.quick else 16)
     a.max_p = a.max_p or len(os.sched_getaffinity(0))
+    if os.sep in a.pvrt:
+        a.pvrt = os.path.abspath(a.pvrt)
     a.only = set(a.only.split(","))
     if a.only - {"ceiling", "openmp", "mpi", "hybrid", "fig1"}:
         ap.error("unknown group in --only")

@@ -16,8 +16,12 @@ for scene in paper1 paper2 paper1_noreflection glass100 spheres_100 spheres_1000
     grep -q "^[a-z]*,$scene,[0-9]*,povray,0,.*,ok," "$out/results.csv" || fail "no POV-Ray run of $scene"
   fi
 done
-grep -q '^speedup,paper1,[0-9]*,pvrt,0,1,' "$out/results.csv" || fail "no one-thread speedup run"
-for heading in '## Scenes' '## Random scenes' '## pvrt: rays by kind' '## pvrt parallel speedup'; do
+for f in scaling_runs.csv scaling_summary.csv scaling.md; do [ -s "$out/$f" ] || fail "$f not written"; done
+grep -q '^openmp,openmp tiles P=1,openmp,tiles,,1,1,1,0,' "$out/scaling_runs.csv" || fail "no one-thread scaling run"
+if command -v mpirun >/dev/null; then
+  grep -q '^mpi,mpi dynamic gather P=1,mpi,dynamic,gather,1,1,1,0,.*,ok,' "$out/scaling_runs.csv" || fail "no MPI scaling run"
+fi
+for heading in '## Scenes' '## Random scenes' '## pvrt: rays by kind' '## Parallel scaling' '### OpenMP threads'; do
   grep -q "^$heading" "$out/results.md" || fail "results.md lacks \"$heading\""
 done
 echo PASS
