@@ -554,7 +554,7 @@ def main(argv):
                 n *= 10
         speedup_md = ""
         if "speedup" in args.only:
-            import speedup
+            import speedup  # here: speedup.py imports this module's write_csv
             sp_args = ["--out", args.out, "--pvrt", args.pvrt, "--mpirun", args.mpirun, "--max-p", str(args.threads),
                        "--width", str(args.width), "--height", str(args.height), "--spp", str(args.aa ** 2),
                        "--runs", str(args.runs)] + (["--quick"] if args.quick else [])

@@ -22,6 +22,8 @@ import subprocess
 import sys
 import time
 
+from bench import write_csv
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 FIELDS = ["group", "config", "kind", "schedule", "gather", "ranks", "threads", "p", "run", "spp", "width", "height",
@@ -255,17 +257,6 @@ def summarise(rows, max_p):
                 s["wall_speedup"] = base["wall_s"] / s["wall_s"]
                 s["wall_efficiency"] = s["wall_speedup"] / s["p"]
     return out, slowdown, alone, together
-
-
-def write_csv(path, rows, fields=None):
-    if fields is None:
-        fields = []
-        for r in rows:
-            fields += [k for k in r if k not in fields]
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
 
 
 def pct(v):
