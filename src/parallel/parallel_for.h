@@ -20,7 +20,9 @@ void parallelFor(Backend backend, int workers, const WorkPlan& plan,
 // Calls body(i) for every i in [0, n) on up to `threads` threads (0: threadBudget()),
 // one index at a time to whichever thread is free: for the stages before and after the
 // render (load, build, encode), whose results must not depend on which thread did what.
-// An exception thrown by a body ends the program, so bodies catch their own.
+// Indices are handed out in increasing order, so a body may wait for the work of a body
+// with a smaller index (it has started). An exception thrown by a body ends the program,
+// so bodies catch their own.
 void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body);
 
 }  // namespace pvrt
