@@ -881,12 +881,14 @@ std::string skeletonOf(std::string_view bytes, const XmlSplit& split) {
   return out;
 }
 
-// Pieces of about `pieceBytes`, or smaller when many threads parse them at once: their
+// Pieces of about `pieceBytes`, or smaller when several threads parse them at once: their
 // trees together (tinyxml2's is about four times the text) then take no more memory than
-// two pieces of `pieceBytes` would, and there are enough of them to share out evenly.
+// one piece of `pieceBytes` would, and there are enough of them to share out evenly. With
+// 2 * pieceBytes / threads, peak RSS of 10^6 spheres with 16 threads was 1% above that of the
+// two-stage pipeline before.
 size_t pieceSize(size_t fileBytes, size_t pieceBytes) {
   const size_t threads = size_t(std::max(1, threadBudget()));
-  const size_t even = std::min(fileBytes / (8 * threads), 2 * pieceBytes / threads);
+  const size_t even = std::min(fileBytes / (8 * threads), pieceBytes / threads);
   return std::min(pieceBytes, std::max(size_t(64) << 10, even));
 }
 
