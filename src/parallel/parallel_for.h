@@ -27,7 +27,9 @@ void parallelTeam(int workers, const std::function<void(int worker)>& team);
 // Calls body(i) for every i in [0, n) on up to `threads` threads (0: threadBudget()),
 // one index at a time to whichever thread is free: for the stages before and after the
 // render (load, build, encode), whose results must not depend on which thread did what.
-// An exception thrown by a body ends the program, so bodies catch their own.
+// Indices are handed out in increasing order, so a body may wait for the work of a body
+// with a smaller index (it has started). An exception thrown by a body ends the program,
+// so bodies catch their own.
 void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body);
 
 // [0, n) cut into consecutive blocks of nearly equal size, for passes over big arrays whose

@@ -20,7 +20,6 @@ class Scanner {
   explicit Scanner(std::string_view s) : s_(s) {}
 
   size_t pos = 0;
-  size_t lastElementEnd = 0;
 
   bool at(std::string_view prefix) const { return s_.compare(pos, prefix.size(), prefix) == 0; }
   bool done() const { return pos >= s_.size(); }
@@ -118,10 +117,68 @@ int newlines(std::string_view s, size_t from, size_t to) {
   return int(std::count(s.begin() + std::ptrdiff_t(from), s.begin() + std::ptrdiff_t(to), '\n'));
 }
 
+// What the scan of the root's children meets, in order: a child ending (at `pos`, counted or
+// not), an end tag where a child could begin (the root's, at `pos`), or something that makes
+// it give up; and, where a part of the body is scanned from a guessed place, the place just
+// after such an end tag, where the scan goes on.
+struct Met {
+  enum Kind : uint8_t { Child, CountedChild, EndTag, GiveUp, Resumed };
+  Met(size_t pos, Kind kind) : bits_(uint64_t(pos) << 3 | kind) {}
+  size_t pos() const { return size_t(bits_ >> 3); }
+  Kind kind() const { return Kind(bits_ & 7); }
+
+ private:
+  uint64_t bits_;  // a child of every hundred bytes or so: a million of them for 10^6 spheres
+};
+
+// Scans the root's children from `pos`, which lies between two of them, until a child ends at
+// or past `stop`, an end tag or a give-up; appends what it met to `out`. With `resume`, an
+// end tag does not end the scan: a part of the body scanned from a guessed place may have
+// begun inside a child, whose end tag this is, and the root's next child may follow.
+void scanChildren(std::string_view bytes, size_t pos, size_t stop, bool resume,
+                  const std::function<bool(std::string_view)>& counts, std::vector<Met>& out) {
+  Scanner scan(bytes);
+  scan.pos = pos;
+  auto giveUp = [&] { out.push_back({scan.pos, Met::GiveUp}); };
+  for (;;) {
+    scan.skipSpace();
+    if (scan.done()) return giveUp();
+    if (scan.at("<!--")) {
+      if (!scan.skipPast("-->")) return giveUp();
+      continue;
+    }
+    if (scan.at("</")) {  // the root's end tag
+      out.push_back({scan.pos, Met::EndTag});
+      if (!resume || !scan.skipPast(">")) return;
+      out.push_back({scan.pos, Met::Resumed});
+      continue;
+    }
+    if (!scan.at("<") || scan.at("<!") || scan.at("<?")) return giveUp();
+    const bool counted = counts && counts(scan.name());
+    if (!scan.element()) return giveUp();
+    out.push_back({scan.pos, counted ? Met::CountedChild : Met::Child});
+    if (scan.pos >= stop) return;
+  }
+}
+
+// Where a scan of the part of the body from `from` on may start: just after the first '>'
+// (at or after from - 1) that is followed, after any space, by the start of an element. As a
+// rule that is between two children of the root, or between two children of one of them.
+size_t guessBetweenChildren(std::string_view bytes, size_t from, size_t to) {
+  for (size_t i = from == 0 ? 0 : from - 1; i < to; ++i) {
+    if (bytes[i] != '>') continue;
+    size_t j = i + 1;
+    while (j < bytes.size() && (bytes[j] == ' ' || bytes[j] == '\t' || bytes[j] == '\r' || bytes[j] == '\n')) ++j;
+    if (j + 1 < bytes.size() && bytes[j] == '<' && bytes[j + 1] != '/' && bytes[j + 1] != '!' && bytes[j + 1] != '?')
+      return i + 1;
+  }
+  return std::string_view::npos;
+}
+
 }  // namespace
 
 std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
-                                     const std::function<bool(std::string_view name)>& counts) {
+                                     const std::function<bool(std::string_view name)>& counts, size_t partBytes) {
   Scanner scan(bytes);
   if (scan.at("\xEF\xBB\xBF")) scan.pos += 3;  // a UTF-8 byte order mark
   for (;;) {                                  // the prolog: declaration and comments
@@ -141,30 +198,73 @@ std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
 
   XmlSplit split;
   split.bodyBegin = scan.pos;
+  // The body is scanned in parts, on every thread: each part from a guessed place between
+  // two children (the first from the body's start), until a child ends past the part. Then
+  // the scans are joined in order: the scan of the part before ends where the true scan is,
+  // and from there on the next part's scan is the true one if it passed the same place (the
+  // scan carries nothing else from one child to the next); if it did not, that part is
+  // scanned again from there. So the cut is the same for any parts and any number of threads.
+  if (partBytes == 0) {
+    const size_t threads = size_t(std::max(1, threadBudget()));
+    partBytes = threads > 1 ? std::max(size_t(1) << 20, (bytes.size() - split.bodyBegin) / (4 * threads)) : bytes.size();
+  }
+  partBytes = std::max<size_t>(partBytes, 1);
+  const size_t body = bytes.size() - split.bodyBegin;
+  const size_t parts = body == 0 ? 0 : 1 + (body - 1) / partBytes;
+  auto partEnd = [&](size_t i) { return i + 1 >= parts ? bytes.size() : split.bodyBegin + (i + 1) * partBytes; };
+  std::vector<size_t> starts(parts);
+  std::vector<std::vector<Met>> met(parts);
+  parallelIndices(parts, 0, [&](size_t i) {
+    starts[i] = i == 0 ? split.bodyBegin : guessBetweenChildren(bytes, split.bodyBegin + i * partBytes, partEnd(i));
+    if (starts[i] == std::string_view::npos) return;
+    met[i].reserve((partEnd(i) - starts[i]) / 128);
+    scanChildren(bytes, starts[i], partEnd(i), i > 0, counts, met[i]);
+  });
+
   XmlPiece piece{scan.pos, scan.pos};
-  for (;;) {
-    scan.skipSpace();
-    if (scan.done()) return std::nullopt;
-    if (scan.at("<!--")) {
-      if (!scan.skipPast("-->")) return std::nullopt;
-      continue;
+  size_t at = split.bodyBegin;  // where the true scan is: between two children
+  size_t lastChildEnd = 0;
+  std::vector<Met> again;
+  for (size_t i = 0; i < parts && split.bodyEnd == 0; ++i) {
+    if (at >= partEnd(i)) continue;  // a child reached past this part
+    // Where this part's scan passed `at`: from there on it is the true scan.
+    const std::vector<Met>* events = &met[i];
+    size_t from = 0;
+    if (starts[i] != at) {
+      const auto same = std::find_if(events->begin(), events->end(), [&](const Met& m) {
+        return m.pos() == at && m.kind() != Met::EndTag && m.kind() != Met::GiveUp;
+      });
+      if (same != events->end()) {
+        from = size_t(same - events->begin()) + 1;
+      } else {
+        again.clear();
+        scanChildren(bytes, at, partEnd(i), false, counts, again);
+        events = &again;
+      }
     }
-    if (scan.at("</")) break;  // the root's end tag
-    if (!scan.at("<") || scan.at("<!") || scan.at("<?")) return std::nullopt;
-    if (counts && counts(scan.name())) ++piece.counted;
-    if (!scan.element()) return std::nullopt;
-    ++split.elements;
-    scan.lastElementEnd = scan.pos;
-    if (scan.pos - piece.begin >= pieceBytes) {
-      piece.end = scan.pos;
-      split.pieces.push_back(piece);
-      piece = {scan.pos, scan.pos};
+    for (size_t k = from; k < events->size(); ++k) {
+      const Met& m = (*events)[k];
+      if (m.kind() == Met::GiveUp) return std::nullopt;
+      if (m.kind() == Met::EndTag) {
+        split.bodyEnd = m.pos();
+        break;
+      }
+      // A child (Resumed never follows on the true scan: an end tag ends it).
+      if (m.kind() == Met::CountedChild) ++piece.counted;
+      ++split.elements;
+      at = lastChildEnd = m.pos();
+      if (at - piece.begin >= pieceBytes) {
+        piece.end = at;
+        split.pieces.push_back(piece);
+        piece = {at, at};
+      }
+      if (at >= partEnd(i)) break;
     }
   }
-  split.bodyEnd = scan.pos;
+  if (split.bodyEnd == 0) return std::nullopt;  // (the scan of the last part ends in an end tag or gives up)
   // What follows the last cut joins the last piece when it holds no element: tinyxml2
   // refuses a document of nothing but space.
-  if (piece.begin == scan.lastElementEnd && !split.pieces.empty()) {
+  if (piece.begin == lastChildEnd && !split.pieces.empty()) {
     split.pieces.back().end = split.bodyEnd;
   } else {
     piece.end = split.bodyEnd;

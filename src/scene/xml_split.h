@@ -36,8 +36,12 @@ struct XmlSplit {
 // after an element; nullopt when the scan gives up (see above). `counts`, when given, is
 // asked about the name of each of the root's children (the bytes up to the first space,
 // '/' or '>' of its start tag), so that a reader knows, before any piece is parsed, how many
-// elements of a kind come before each piece.
+// elements of a kind come before each piece; it is called from several threads at once.
+// The scan itself runs on every thread (threadBudget()), over parts of the body of
+// `partBytes` (0: a few megabytes, when there is more than one thread); the result is the
+// same for any parts and threads.
 std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
-                                     const std::function<bool(std::string_view name)>& counts = {});
+                                     const std::function<bool(std::string_view name)>& counts = {},
+                                     size_t partBytes = 0);
 
 }  // namespace pvrt

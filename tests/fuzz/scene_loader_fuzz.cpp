@@ -3,17 +3,21 @@
 // success or a pvrt::Error(SceneError) with a one-line `fuzz.xml:LINE: error: ` message is a
 // finding: a crash, a sanitizer report, another exception, or a malformed message. So is a
 // difference between loading the bytes whole and in pieces of a byte (scene/xml_split.h):
-// the same scene, or the same message.
+// the same scene, or the same message; and a difference between the cut found by one scan
+// and by scans of parts of a few bytes joined (splitXmlRoot's partBytes).
 // Built with -DPVRT_FUZZ=ON by tools/fuzz.sh (clang only).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/error.h"
 #include "render/scene.h"
 #include "scene/xml_loader.h"
+#include "scene/xml_split.h"
 #include "scene/xml_writer.h"
 
 namespace {
@@ -27,6 +31,19 @@ std::string outcome(const std::string& text, const std::string& name, size_t pie
   }
 }
 
+// The cut, as text.
+std::string cut(const std::string& text, size_t partBytes) {
+  const std::optional<pvrt::XmlSplit> split = pvrt::splitXmlRoot(
+      text, 1, [](std::string_view name) { return name.size() % 2 == 0; }, partBytes);
+  if (!split) return "none";
+  std::string out = std::to_string(split->bodyBegin) + " " + std::to_string(split->bodyEnd) + " " +
+                    std::to_string(split->elements) + " " + std::to_string(split->bodyLines);
+  for (const pvrt::XmlPiece& p : split->pieces)
+    out += " " + std::to_string(p.begin) + "-" + std::to_string(p.end) + ":" + std::to_string(p.firstLine) + ":" +
+           std::to_string(p.counted);
+  return out;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -35,6 +52,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string whole = outcome(text, name, std::numeric_limits<size_t>::max());
   if (const std::string pieces = outcome(text, name, 1); pieces != whole) {
     std::fprintf(stderr, "loaded whole:\n%s\nloaded in pieces:\n%s\n", whole.c_str(), pieces.c_str());
+    std::abort();
+  }
+  if (const std::string one = cut(text, std::numeric_limits<size_t>::max()), parts = cut(text, 3); parts != one) {
+    std::fprintf(stderr, "cut by one scan:\n%s\ncut by scans of parts:\n%s\n", one.c_str(), parts.c_str());
     std::abort();
   }
   try {

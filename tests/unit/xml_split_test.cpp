@@ -8,12 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "generate/random_scene.h"
+#include "parallel/threads.h"
 #include "scene/xml_loader.h"
 #include "scene/xml_writer.h"
 
@@ -201,6 +203,71 @@ TEST(XmlSplit, MalformedPiecesComeBeforeErrorsAroundTheRoot) {
   const std::string lessThan = "<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n</sp<scene>" + secondRoot;
   EXPECT_FALSE(splitXmlRoot(lessThan, 1));
   expectSameInPieces(lessThan, "'<' in an end tag, then a second root");
+}
+
+// ---------------------------------------------------------------- the scan in parts
+
+std::string describe(const std::optional<XmlSplit>& split) {
+  if (!split) return "gave up";
+  std::string out = std::to_string(split->bodyBegin) + "-" + std::to_string(split->bodyEnd) + ", " +
+                    std::to_string(split->elements) + " elements, " + std::to_string(split->bodyLines) + " lines:";
+  for (const XmlPiece& p : split->pieces)
+    out += " [" + std::to_string(p.begin) + "-" + std::to_string(p.end) + " line " + std::to_string(p.firstLine) +
+           " counted " + std::to_string(p.counted) + "]";
+  return out;
+}
+
+// The body scanned in parts of a few sizes, from guessed places, by 1 and 2 threads, is cut
+// as by one scan from its start.
+void expectSameCutInParts(const std::string& xml, const std::string& what) {
+  const auto counts = [](std::string_view name) { return name == "sphere" || name == "box" || name == "mesh"; };
+  for (size_t pieceBytes : {size_t(1), size_t(300)}) {
+    const std::string whole = describe(splitXmlRoot(xml, pieceBytes, counts, kWhole));
+    for (size_t partBytes : {size_t(1), size_t(5), size_t(64), size_t(700)})
+      for (int threads : {1, 2}) {
+        if (partBytes == 1 && xml.size() > 2000) continue;  // (slow, and the same as parts of 5)
+        if (threads == 1 && partBytes != 64) continue;      // the parts are the same, scanned in turn
+        setThreadBudget(threads);
+        EXPECT_EQ(describe(splitXmlRoot(xml, pieceBytes, counts, partBytes)), whole)
+            << what << ": pieces of " << pieceBytes << ", parts of " << partBytes << ", " << threads << " threads";
+      }
+  }
+  setThreadBudget(0);
+}
+
+TEST(XmlSplit, TheScanInPartsCutsAsOneScan) {
+  GenerateOptions g;
+  g.spheres = 40;
+  const std::string generated = sceneToXml(generateScene(g));
+  expectSameCutInParts(generated, "40 spheres");
+  for (const char* xml : {
+           "<scene><sphere/><!-- <box/> </scene> --><box a='>'/><mesh><triangle/><triangle/></mesh></scene>",
+           "<scene>\n <mesh>\n  <triangle p1=\"0 0 0\"/>\n  <triangle/>\n </mesh>\n <sphere/>\n</scene>\n<!-- x -->",
+           "<scene><sphere><![CDATA[ </sphere> <box/> ]]></sphere><box/></scene>",
+           "<scene><sphere/></scene><scene><box/></scene>",   // a second root
+           "<scene><sphere/>text<box/></scene>",              // text among the children
+           "<scene><sphere/><box/>",                          // no end
+           "<scene><sphere/><?pi?><box/></scene>",
+           "<scene><sphere a=\"x>y<z\"><pigment/></sphere><box></box></scene>",
+       })
+    expectSameCutInParts(xml, xml);
+  for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/scenes"))
+    if (entry.path().extension() == ".xml") expectSameCutInParts(fileText(entry.path()), entry.path().string());
+  for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/tests/e2e/bad"))
+    expectSameCutInParts(fileText(entry.path()), entry.path().string());
+  // Mutants of the generated scene: a few bytes of markup put in or taken out anywhere.
+  std::mt19937 random(7);
+  const char* inserts[] = {"<", ">", "\"", "'", "</sphere>", "<!--", "-->", "<box/>", "x", "<![CDATA[", "]]>", "/>"};
+  for (int i = 0; i < 60; ++i) {
+    std::string xml = generated;
+    const size_t at = random() % xml.size();
+    if (i % 3 == 0) {
+      xml.erase(at, random() % 40);
+    } else {
+      xml.insert(at, inserts[random() % std::size(inserts)]);
+    }
+    expectSameCutInParts(xml, "mutant " + std::to_string(i));
+  }
 }
 
 }  // namespace
