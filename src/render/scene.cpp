@@ -183,8 +183,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
 
   const std::vector<ObjectDesc>& objects = desc.objects;
   const int threads = threadBudget();
-  s.materials.reserve(objects.size());
-  for (const ObjectDesc& o : objects) s.materials.add(o.material, o.transforms.combined());
+  s.materials.addObjects(objects, threads);
   // The primitives, a block of objects at a time: each block's counted, then made where the
   // blocks before leave off.
   const Blocks blocks(objects.size(), threads, kObjectsAtATime);
