@@ -250,8 +250,10 @@ void buildLightBuffers(Scene& s) {
     if (!s.lights[j].area && !s.lights[j].shadowless) which.push_back(j);
   if (which.empty() || s.bvh.primitives().empty()) return;
   const std::vector<LightBuffer::Occluder> occluders = s.bvh.occluders();
-  // One light at a time, each built by every thread: a scene has fewer lights than threads.
-  for (size_t j : which) s.lightBuffers[j] = LightBuffer(s.lights[j].location, occluders);
+  std::vector<Vec3> locations;
+  for (size_t j : which) locations.push_back(s.lights[j].location);
+  std::vector<LightBuffer> built = LightBuffer::build(locations, occluders);
+  for (size_t k = 0; k < which.size(); ++k) s.lightBuffers[which[k]] = std::move(built[k]);
   size_t bytes = 0;
   for (const LightBuffer& b : s.lightBuffers) bytes += b.bytes();
   s.prefetchLightBuffers = bytes > (size_t(16) << 20);
