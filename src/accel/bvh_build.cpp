@@ -20,6 +20,7 @@
 
 #include "accel/bvh.h"
 #include "core/lanes.h"
+#include "core/prefault.h"
 #include "parallel/parallel_for.h"
 #include "parallel/permute.h"
 
@@ -52,6 +53,7 @@ class RawArray {
   const T& operator[](size_t i) const { return data_.get()[i]; }
   T* begin() { return data_.get(); }
   size_t size() const { return size_; }
+  void shrink(size_t n) { size_ = std::min(size_, n); }  // keeps the first n
 
  private:
   struct Free {
@@ -614,6 +616,7 @@ class Collapser {
           if (n.count[i] == 0) n.child[i] += d.at;
     });
     wide.reserve(next);
+    prefault(wide.data(), next * sizeof(BvhNode), threads_);
     for (const Run& r : runs) {
       if (!r.deferred) {
         wide.push_back(top[r.index]);
@@ -727,14 +730,17 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   const int threads = buildThreads > 0 ? int(buildThreads) : threadBudget();
   const uint32_t total = uint32_t(primitives.size());
   // The bounded primitives' items, in primitive order: each block's are counted, then written
-  // where the blocks before leave off.
-  const Blocks blocks(total, threads, kGrain);
+  // where the blocks before leave off (one thread writes them as it finds them).
+  const bool alone = threads <= 1;
+  const Blocks blocks(total, threads, alone ? std::max<size_t>(total, 1) : kGrain);
   std::vector<uint32_t> firstItem(blocks.count + 1, 0);
-  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    uint32_t n = 0;
-    for (size_t i = lo; i < hi; ++i) n += !primitives[i].bounds().empty();
-    firstItem[b + 1] = n;
-  });
+  if (alone) firstItem[1] = total;  // at most
+  else
+    parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+      uint32_t n = 0;
+      for (size_t i = lo; i < hi; ++i) n += !primitives[i].bounds().empty();
+      firstItem[b + 1] = n;
+    });
   std::partial_sum(firstItem.begin(), firstItem.end(), firstItem.begin());
   RawArray<BuildItem> items(firstItem.back());
   std::vector<std::vector<uint32_t>> unbounded(blocks.count);
@@ -746,6 +752,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
       else items[k++] = {box, box.centroid(), uint32_t(i)};
     }
   });
+  if (alone) items.shrink(total - uint32_t(unbounded[0].size()));
   if (items.size() > 0) {
     RawArray<BuildNode> binary(2 * items.size() - 1);
     Builder builder(items, binary, threads);
@@ -764,7 +771,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
     for (uint32_t i : unbounded[b]) order[j++] = i;
   permuteInPlace(primitives, order, threads);
   prims_ = std::move(primitives);
-  items_.resize(prims_.size());
+  resizePrefaulted(items_, prims_.size(), threads);
   std::vector<uint64_t> transformBytes(blocks.count, 0);
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
     for (size_t i = lo; i < hi; ++i) {

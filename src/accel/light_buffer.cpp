@@ -301,11 +301,16 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
     cells[l] = 6 * size_t(buffer.res_) * buffer.res_;
   }
   // Each cell's entries in the order the blocks happen to put them there, then sorted: the
-  // lists are the same whatever that order.
-  std::vector<std::vector<std::atomic<uint32_t>>> filled(count);
-  parallelIndices(count, threads, [&](size_t l) { filled[l] = std::vector<std::atomic<uint32_t>>(cells[l]); });
+  // lists are the same whatever that order. The cells' counts, then cursors, are updated
+  // atomically where several threads share them.
+  const bool shared = (threads > 0 ? threads : threadBudget()) > 1;
+  const auto bump = [shared](uint32_t& n) {
+    return shared ? std::atomic_ref<uint32_t>(n).fetch_add(1, std::memory_order_relaxed) : n++;
+  };
+  std::vector<std::vector<uint32_t>> filled(count);
+  parallelIndices(count, threads, [&](size_t l) { filled[l].assign(cells[l], 0); });
   parallelIndices(pieces.size(), threads, [&](size_t p) {
-    for (const Listing& x : parts[p].listings) filled[pieces[p].light][x.cell].fetch_add(1, std::memory_order_relaxed);
+    for (const Listing& x : parts[p].listings) bump(filled[pieces[p].light][x.cell]);
   });
   parallelIndices(count, threads, [&](size_t l) {
     if (cells[l] == 0) return;
@@ -313,15 +318,15 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
     buffer.offsets_.resize(cells[l] + 1);
     buffer.offsets_[0] = 0;
     for (size_t c = 0; c < cells[l]; ++c) {
-      buffer.offsets_[c + 1] = buffer.offsets_[c] + filled[l][c].load(std::memory_order_relaxed);
-      filled[l][c].store(buffer.offsets_[c], std::memory_order_relaxed);
+      buffer.offsets_[c + 1] = buffer.offsets_[c] + filled[l][c];
+      filled[l][c] = buffer.offsets_[c];
     }
     buffer.entries_.resize(buffer.offsets_[cells[l]]);
   });
   parallelIndices(pieces.size(), threads, [&](size_t p) {
     std::vector<Entry>& entries = out[pieces[p].light].entries_;
-    std::vector<std::atomic<uint32_t>>& at = filled[pieces[p].light];
-    for (const Listing& x : parts[p].listings) entries[at[x.cell].fetch_add(1, std::memory_order_relaxed)] = x.entry;
+    std::vector<uint32_t>& at = filled[pieces[p].light];
+    for (const Listing& x : parts[p].listings) entries[bump(at[x.cell])] = x.entry;
     std::vector<Listing>().swap(parts[p].listings);
   });
   constexpr size_t kCellsAtATime = 1024;

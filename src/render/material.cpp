@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 
+#include "core/prefault.h"
 #include "geometry/primitive.h"
 #include "parallel/parallel_for.h"
 
@@ -86,7 +87,7 @@ void MaterialTable::addObjects(std::span<const ObjectDesc> objects, int threads)
   // order it meets them; those then join the table's block by block, which puts each where
   // add() would have.
   const size_t before = materials_.size();
-  materials_.resize(before + objects.size());
+  resizePrefaulted(materials_, before + objects.size(), threads);
   struct Part {
     std::vector<Surface> surfaces;
     std::vector<Checker> checkers;

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/prefault.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
@@ -192,7 +193,8 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
     for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
   });
   std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<Primitive> prims(first.back());
+  std::vector<Primitive> prims;
+  resizePrefaulted(prims, first.back(), threads);
   // Each block's primitives that hold the camera, and their bounds.
   std::vector<std::vector<uint32_t>> interiors(blocks.count);
   std::vector<Bounds> bounds(blocks.count);
