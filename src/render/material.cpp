@@ -86,6 +86,11 @@ void MaterialTable::addObjects(std::span<const ObjectDesc> objects, int threads)
   // A block of objects at a time, each block with surfaces and checkers of its own, in the
   // order it meets them; those then join the table's block by block, which puts each where
   // add() would have.
+  if ((threads > 0 ? threads : threadBudget()) <= 1) {
+    materials_.reserve(materials_.size() + objects.size());
+    for (const ObjectDesc& o : objects) add(o.material, o.transforms.combined());
+    return;
+  }
   const size_t before = materials_.size();
   resizePrefaulted(materials_, before + objects.size(), threads);
   struct Part {
