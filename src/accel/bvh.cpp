@@ -7,6 +7,7 @@
 #include "accel/packet_rays.h"
 #include "accel/slabs.h"
 #include "core/lanes.h"
+#include "core/prefault.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -229,7 +230,8 @@ std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates
 }
 
 std::vector<LightBuffer::Occluder> Bvh::occluders() const {
-  std::vector<LightBuffer::Occluder> out(boundedCount_);
+  std::vector<LightBuffer::Occluder> out;
+  resizePrefaulted(out, boundedCount_, 0);
   parallelBlocks(Blocks(boundedCount_, 0, 4096), 0, [&](size_t, size_t lo, size_t hi) {
     for (size_t i = lo; i < hi; ++i) {
       out[i].box = prims_[i].bounds();

@@ -67,7 +67,7 @@ class Bvh {
  public:
   Bvh() = default;
   // Takes the primitives and reorders them for locality. The build uses up to
-  // `buildThreads` threads (0: one per core); the tree is the same whatever the number.
+  // `buildThreads` threads (0: threadBudget()); the tree is the same whatever the number.
   explicit Bvh(std::vector<Primitive> primitives, unsigned buildThreads = 0);
 
   const std::vector<Primitive>& primitives() const { return prims_; }

@@ -20,6 +20,7 @@
 
 #include "accel/bvh.h"
 #include "core/lanes.h"
+#include "core/prefault.h"
 #include "parallel/parallel_for.h"
 #include "parallel/permute.h"
 
@@ -52,6 +53,7 @@ class RawArray {
   const T& operator[](size_t i) const { return data_.get()[i]; }
   T* begin() { return data_.get(); }
   size_t size() const { return size_; }
+  void shrink(size_t n) { size_ = std::min(size_, n); }  // keeps the first n
 
  private:
   struct Free {
@@ -232,91 +234,217 @@ class SerialPasses {
   BuildItem* items_;
 };
 
-// The same passes by up to `threads` threads, for the nodes at the top of the tree.
-class SharedPasses {
- public:
-  SharedPasses(BuildItem* items, size_t itemCount, int threads)
-      : items_(items), threads_(threads), left_(itemCount), scratch_(itemCount) {}
-
-  NodeBoxes boxes(uint32_t begin, uint32_t end) const {
-    const Blocks blocks(end - begin, threads_, kGrain);
-    std::vector<NodeBoxes> part(blocks.count);
-    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
-      part[b] = SerialPasses(items_).boxes(begin + uint32_t(lo), begin + uint32_t(hi));
-    });
-    for (size_t b = 1; b < part.size(); ++b) part[0].merge(part[b]);
-    return part[0];
-  }
-  Bins bins(uint32_t begin, uint32_t end, const Binning& binning) const {
-    const Blocks blocks(end - begin, threads_, kGrain);
-    std::vector<Bins> part(blocks.count);
-    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
-      part[b] = SerialPasses(items_).bins(begin + uint32_t(lo), begin + uint32_t(hi), binning);
-    });
-    for (size_t b = 1; b < part.size(); ++b) part[0].merge(part[b]);
-    return part[0];
-  }
-  // SerialPasses::partition's order, found in parallel: with m = begin + (items going left),
-  // the k-th item of [begin, m) that goes right (from the left) trades places with the k-th
-  // of [m, end) that goes left (from the right).
-  template <class Left>
-  uint32_t partition(uint32_t begin, uint32_t end, Left&& left) {
-    const Blocks blocks(end - begin, threads_, kGrain);
-    std::vector<uint32_t> lefts(blocks.count);
-    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
-      uint32_t n = 0;
-      for (size_t i = begin + lo; i < begin + hi; ++i) n += (left_[i] = left(items_[i]));
-      lefts[b] = n;
-    });
-    const uint32_t mid = begin + std::accumulate(lefts.begin(), lefts.end(), 0u);
-    // Where each block's misplaced items come in the two sequences: those going right are
-    // counted from the left, those going left from the right.
-    std::vector<uint32_t> firstRight(blocks.count + 1, 0), firstLeft(blocks.count + 1, 0);
-    for (size_t b = 0; b < blocks.count; ++b) {
-      const uint32_t lo = begin + uint32_t(blocks.begin(b)), hi = begin + uint32_t(blocks.end(b));
-      uint32_t goRight = 0;  // in [lo, min(hi, mid))
-      if (hi <= mid) goRight = (hi - lo) - lefts[b];
-      else
-        for (uint32_t i = lo; i < mid; ++i) goRight += !left_[i];
-      firstRight[b + 1] = firstRight[b] + goRight;
-    }
-    for (size_t b = blocks.count; b-- > 0;) {
-      const uint32_t lo = begin + uint32_t(blocks.begin(b)), hi = begin + uint32_t(blocks.end(b));
-      uint32_t goLeft = 0;  // in [max(lo, mid), hi)
-      if (lo >= mid) goLeft = lefts[b];
-      else
-        for (uint32_t i = mid; i < hi; ++i) goLeft += left_[i];
-      firstLeft[b] = firstLeft[b + 1] + goLeft;  // firstLeft[b + 1] counts the blocks after b
-    }
-    const uint32_t swaps = firstRight[blocks.count];
-    uint32_t* goingRight = scratch_.begin();              // positions, from the left
-    uint32_t* goingLeft = scratch_.begin() + (end - mid);  // positions, from the right
-    parallelBlocks(blocks, threads_, [&](size_t b, size_t lo, size_t hi) {
-      const uint32_t from = begin + uint32_t(lo), to = begin + uint32_t(hi);
-      uint32_t k = firstRight[b];
-      for (uint32_t i = from; i < std::min(to, mid); ++i)
-        if (!left_[i]) goingRight[k++] = i;
-      k = firstLeft[b + 1];
-      for (uint32_t i = to; i-- > std::max(from, mid);)
-        if (left_[i]) goingLeft[k++] = i;
-    });
-    const Blocks pairs(swaps, threads_, kGrain);
-    parallelBlocks(pairs, threads_, [&](size_t, size_t lo, size_t hi) {
-      for (size_t k = lo; k < hi; ++k) std::swap(items_[goingRight[k]], items_[goingLeft[k]]);
-    });
-    return mid;
-  }
-
- private:
-  BuildItem* items_;
-  int threads_;
-  RawArray<uint8_t> left_;  // whether item i goes left
-  RawArray<uint32_t> scratch_;
-};
-
 }  // namespace
 
 namespace {
+
+// What becomes of a node: a leaf, two halves of its items as they lie, or its items
+// partitioned at the cheapest split between bins (`best`).
+enum class Cut { Leaf, Half, Partition };
+
+Cut choose(const Bins& bins, const Binning& binning, const Bounds& bounds, uint32_t count, BinSplit& best) {
+  best = cheapest(bins, binning);
+  // All centroids coincide: split in the middle if the leaf would be too big.
+  if (best.axis < 0) return count <= kMaxLeafSize ? Cut::Leaf : Cut::Half;
+  const double area = bounds.surfaceArea();
+  const double splitCost = kTraversalCost + (area > 0 ? kIntersectionCost * best.cost / area : INFINITY);
+  if (count <= kMaxLeafSize && splitCost >= kIntersectionCost * count) return Cut::Leaf;
+  return Cut::Partition;
+}
+
+// Where median splits cut a node at depth kMaxSahDepth or more (having reordered its items),
+// or `end` to make it a leaf.
+uint32_t median(BuildItem* items, uint32_t begin, uint32_t end, const Bounds& centroids) {
+  if (end - begin <= kMaxLeafSize) return end;
+  const int axis = centroids.longestAxis();
+  const uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(items + begin, items + mid, items + end,
+                   [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
+  return mid;
+}
+
+// The nodes of the tree's top: those of at least `shared` items, made a level at a time by
+// all threads together. Each pass over a level (boxes, bins, partition) is one parallel loop
+// over the blocks of all its nodes, at least kGrain items each; a node's results are combined
+// in its blocks' order. The partition puts the items where SerialPasses::partition would:
+// with m = begin + (items going left), the k-th item of [begin, m) that goes right (from the
+// left) trades places with the k-th of [m, end) that goes left (from the right).
+class TopLevels {
+ public:
+  struct Node {
+    uint32_t begin, end;
+    int depth;
+    Bounds bounds;
+    uint32_t mid = 0;             // where its items are cut in two; `end` for a leaf
+    int32_t child[2] = {-1, -1};  // into nodes(); -1: a subtree of fewer than `shared` items
+  };
+
+  TopLevels(BuildItem* items, uint32_t count, uint32_t shared, int threads)
+      : items_(items), shared_(shared), threads_(threads), binOf_{RawArray<uint8_t>(count), RawArray<uint8_t>(count),
+                                                                  RawArray<uint8_t>(count)},
+        scratch_(count) {
+    nodes_.push_back({0, count, 1, {}});
+    for (std::vector<uint32_t> level{0}; !level.empty();) level = split(level);
+  }
+  const std::vector<Node>& nodes() const { return nodes_; }
+
+ private:
+  // A node's block of items.
+  struct Piece {
+    uint32_t node;  // its index in the level
+    uint32_t lo, hi;
+  };
+
+  // Splits the level's nodes, and returns the next level's.
+  std::vector<uint32_t> split(const std::vector<uint32_t>& level) {
+    std::vector<Piece> pieces;
+    std::vector<size_t> firstPiece{0};
+    for (uint32_t k = 0; k < level.size(); ++k) {
+      const Node& n = nodes_[level[k]];
+      const Blocks blocks(n.end - n.begin, threads_, kGrain);
+      for (size_t b = 0; b < blocks.count; ++b)
+        pieces.push_back({k, n.begin + uint32_t(blocks.begin(b)), n.begin + uint32_t(blocks.end(b))});
+      firstPiece.push_back(pieces.size());
+    }
+    const auto pieceRange = [&](uint32_t k) { return std::pair{firstPiece[k], firstPiece[k + 1]}; };
+
+    std::vector<NodeBoxes> boxes(pieces.size());
+    parallelIndices(pieces.size(), threads_, [&](size_t p) {
+      boxes[p] = SerialPasses(items_).boxes(pieces[p].lo, pieces[p].hi);
+    });
+    std::vector<Binning> binnings;
+    std::vector<Bounds> centroids;
+    for (uint32_t k = 0; k < level.size(); ++k) {
+      const auto [first, last] = pieceRange(k);
+      for (size_t p = first + 1; p < last; ++p) boxes[first].merge(boxes[p]);
+      nodes_[level[k]].bounds = boxes[first].box.bounds();
+      centroids.push_back(boxes[first].centroids.bounds());
+      binnings.emplace_back(centroids.back());
+    }
+
+    // Every node is binned (its count is far above 1) unless it is too deep for SAH splits.
+    std::vector<Bins> bins(pieces.size());
+    parallelIndices(pieces.size(), threads_, [&](size_t p) {
+      const Piece& piece = pieces[p];
+      if (nodes_[level[piece.node]].depth >= kMaxSahDepth) return;
+      const Binning& binning = binnings[piece.node];
+      for (uint32_t i = piece.lo; i < piece.hi; ++i) {
+        bins[p].add(binning, items_[i]);
+        for (int axis = 0; axis < 3; ++axis)
+          if (binning.binned(axis)) binOf_[size_t(axis)][i] = uint8_t(binning.bin(items_[i], axis));
+      }
+    });
+    // The cut of each node; for a partition, which side each item goes to (its bin along the
+    // split axis, kept from binning) and each piece's count of items going left (its bins').
+    std::vector<BinSplit> best(level.size());
+    std::vector<Cut> cut(level.size());
+    std::vector<uint32_t> lefts(pieces.size(), 0);
+    for (uint32_t k = 0; k < level.size(); ++k) {
+      Node& n = nodes_[level[k]];
+      if (n.depth >= kMaxSahDepth) {
+        n.mid = median(items_, n.begin, n.end, centroids[k]);
+        cut[k] = Cut::Leaf;  // decided already
+        continue;
+      }
+      const auto [first, last] = pieceRange(k);
+      Bins all = bins[first];
+      for (size_t p = first + 1; p < last; ++p) all.merge(bins[p]);
+      cut[k] = choose(all, binnings[k], n.bounds, n.end - n.begin, best[k]);
+      if (cut[k] == Cut::Leaf) n.mid = n.end;
+      if (cut[k] == Cut::Half) n.mid = n.begin + (n.end - n.begin) / 2;
+      if (cut[k] != Cut::Partition) continue;
+      uint32_t total = 0;
+      for (size_t p = first; p < last; ++p) {
+        for (int b = 0; b <= best[k].bin; ++b) lefts[p] += bins[p].count[size_t(best[k].axis)][size_t(b)];
+        total += lefts[p];
+      }
+      n.mid = n.begin + total;
+    }
+    partition(level, pieces, firstPiece, cut, best, lefts);
+
+    std::vector<uint32_t> next;
+    for (uint32_t k = 0; k < level.size(); ++k) {
+      Node& n = nodes_[level[k]];
+      if (cut[k] == Cut::Partition && (n.mid == n.begin || n.mid == n.end)) n.mid = n.begin + (n.end - n.begin) / 2;
+      if (n.mid == n.end) continue;  // a leaf
+      const uint32_t sides[2][2] = {{n.begin, n.mid}, {n.mid, n.end}};
+      for (int side = 0; side < 2; ++side) {
+        if (sides[side][1] - sides[side][0] < shared_) continue;
+        nodes_[level[k]].child[side] = int32_t(nodes_.size());
+        next.push_back(uint32_t(nodes_.size()));
+        nodes_.push_back({sides[side][0], sides[side][1], nodes_[level[k]].depth + 1, {}});
+      }
+    }
+    return next;
+  }
+
+  void partition(const std::vector<uint32_t>& level, const std::vector<Piece>& pieces,
+                 const std::vector<size_t>& firstPiece, const std::vector<Cut>& cut, const std::vector<BinSplit>& best,
+                 const std::vector<uint32_t>& lefts) {
+    const auto goesLeft = [&](uint32_t k, uint32_t i) {
+      return binOf_[size_t(best[k].axis)][i] <= uint8_t(best[k].bin);
+    };
+    // Where each piece's misplaced items come in their node's two sequences: those going
+    // right counted from the left, those going left from the right.
+    std::vector<uint32_t> firstRight(pieces.size(), 0), firstLeft(pieces.size(), 0);
+    std::vector<uint32_t> swaps(level.size(), 0);
+    for (uint32_t k = 0; k < level.size(); ++k) {
+      if (cut[k] != Cut::Partition) continue;
+      const Node& n = nodes_[level[k]];
+      uint32_t right = 0;
+      for (size_t p = firstPiece[k]; p < firstPiece[k + 1]; ++p) {
+        firstRight[p] = right;
+        const Piece& piece = pieces[p];
+        if (piece.hi <= n.mid) right += (piece.hi - piece.lo) - lefts[p];
+        else
+          for (uint32_t i = piece.lo; i < n.mid; ++i) right += !goesLeft(k, i);
+      }
+      swaps[k] = right;
+      uint32_t left = 0;
+      for (size_t p = firstPiece[k + 1]; p-- > firstPiece[k];) {
+        firstLeft[p] = left;  // those of the pieces after p
+        const Piece& piece = pieces[p];
+        if (piece.lo >= n.mid) left += lefts[p];
+        else
+          for (uint32_t i = n.mid; i < piece.hi; ++i) left += goesLeft(k, i);
+      }
+    }
+    // The positions, node by node in scratch_[begin, end): those going right from the
+    // start, those going left from begin + (end - mid).
+    parallelIndices(pieces.size(), threads_, [&](size_t p) {
+      const Piece& piece = pieces[p];
+      if (cut[piece.node] != Cut::Partition) return;
+      const Node& n = nodes_[level[piece.node]];
+      uint32_t* goingRight = scratch_.begin() + n.begin;
+      uint32_t* goingLeft = goingRight + (n.end - n.mid);
+      uint32_t at = firstRight[p];
+      for (uint32_t i = piece.lo; i < std::min(piece.hi, n.mid); ++i)
+        if (!goesLeft(piece.node, i)) goingRight[at++] = i;
+      at = firstLeft[p];
+      for (uint32_t i = piece.hi; i-- > std::max(piece.lo, n.mid);)
+        if (goesLeft(piece.node, i)) goingLeft[at++] = i;
+    });
+    std::vector<Piece> trades;  // ranges of each node's pairs
+    for (uint32_t k = 0; k < level.size(); ++k) {
+      const Blocks blocks(swaps[k], threads_, kGrain);
+      for (size_t b = 0; b < blocks.count && swaps[k] > 0; ++b)
+        trades.push_back({k, uint32_t(blocks.begin(b)), uint32_t(blocks.end(b))});
+    }
+    parallelIndices(trades.size(), threads_, [&](size_t t) {
+      const Node& n = nodes_[level[trades[t].node]];
+      const uint32_t* goingRight = scratch_.begin() + n.begin;
+      const uint32_t* goingLeft = goingRight + (n.end - n.mid);
+      for (uint32_t k = trades[t].lo; k < trades[t].hi; ++k) std::swap(items_[goingRight[k]], items_[goingLeft[k]]);
+    });
+  }
+
+  BuildItem* items_;
+  uint32_t shared_;
+  int threads_;
+  std::vector<Node> nodes_;
+  RawArray<uint8_t> binOf_[3];  // item i's bin along each axis in its node's binning
+  RawArray<uint32_t> scratch_;
+};
 
 // Builds the binary tree over `items`, reordering them as its leaves take them, into `nodes`
 // (room for 2 x items - 1). Depth first, each node's left child next to it, as one thread would
@@ -336,9 +464,9 @@ class Builder {
       subtree(0, n, 1, next);
       return next;
     }
-    SharedPasses passes(items_.begin(), n, threads_);
+    const TopLevels top(items_.begin(), n, shared, threads_);
     std::vector<Pending> pending;
-    top(passes, shared, 0, n, 1, next, pending);
+    place(top.nodes(), 0, next, pending);
     // The biggest first, so that no thread is left with a big one at the end.
     std::sort(pending.begin(), pending.end(), [](const Pending& a, const Pending& b) {
       return a.end - a.begin > b.end - b.begin || (a.end - a.begin == b.end - b.begin && a.begin < b.begin);
@@ -363,74 +491,57 @@ class Builder {
     int depth;
   };
 
-  void top(SharedPasses& passes, uint32_t shared, uint32_t begin, uint32_t end, int depth, uint32_t& next,
-           std::vector<Pending>& pending) {
-    if (end - begin < shared) {
-      pending.push_back({begin, end, next, depth});
-      next += 2 * (end - begin) - 1;  // the most a binary tree over them takes
-      return;
-    }
+  // Gives top node t and the top nodes below it their slots, depth first, and the subtrees
+  // below them their room.
+  void place(const std::vector<TopLevels::Node>& top, int32_t t, uint32_t& next, std::vector<Pending>& pending) {
+    const TopLevels::Node& n = top[size_t(t)];
     const uint32_t self = next++;
     shared_.push_back(self);
-    Bounds bounds;
-    const uint32_t mid = split(passes, begin, end, depth, bounds);
-    if (mid == end) {
-      nodes_[self] = {bounds, begin, end - begin};
+    if (n.mid == n.end) {
+      nodes_[self] = {n.bounds, n.begin, n.end - n.begin};
       return;
     }
-    top(passes, shared, begin, mid, depth + 1, next, pending);
-    const uint32_t right = next;
-    top(passes, shared, mid, end, depth + 1, next, pending);
-    nodes_[self] = {bounds, right, 0};
+    uint32_t right = 0;
+    const uint32_t sides[2][2] = {{n.begin, n.mid}, {n.mid, n.end}};
+    for (int side = 0; side < 2; ++side) {
+      if (side == 1) right = next;
+      if (n.child[side] >= 0) {
+        place(top, n.child[side], next, pending);
+      } else {
+        pending.push_back({sides[side][0], sides[side][1], next, n.depth + 1});
+        next += 2 * (sides[side][1] - sides[side][0]) - 1;  // the most a binary tree over them takes
+      }
+    }
+    nodes_[self] = {n.bounds, right, 0};
   }
 
   void subtree(uint32_t begin, uint32_t end, int depth, uint32_t& next) {
     const uint32_t self = next++;
-    Bounds bounds;
-    SerialPasses passes(items_.begin());
-    const uint32_t mid = split(passes, begin, end, depth, bounds);
+    const SerialPasses passes(items_.begin());
+    const NodeBoxes boxes = passes.boxes(begin, end);
+    const Bounds bounds = boxes.box.bounds(), centroids = boxes.centroids.bounds();
+    const uint32_t count = end - begin;
+    uint32_t mid = end;
+    if (count > 1 && depth >= kMaxSahDepth) {
+      mid = median(items_.begin(), begin, end, centroids);
+    } else if (count > 1) {
+      const Binning binning(centroids);
+      BinSplit best;
+      const Cut cut = choose(passes.bins(begin, end, binning), binning, bounds, count, best);
+      if (cut == Cut::Half) mid = begin + count / 2;
+      if (cut == Cut::Partition) {
+        mid = passes.partition(begin, end, [&](const BuildItem& it) { return binning.bin(it, best.axis) <= best.bin; });
+        if (mid == begin || mid == end) mid = begin + count / 2;
+      }
+    }
     if (mid == end) {
-      nodes_[self] = {bounds, begin, end - begin};
+      nodes_[self] = {bounds, begin, count};
       return;
     }
     subtree(begin, mid, depth + 1, next);
     const uint32_t right = next;
     subtree(mid, end, depth + 1, next);
     nodes_[self] = {bounds, right, 0};
-  }
-
-  // The node's bounds, and where its items are split in two (having been partitioned), or
-  // `end` to make it a leaf.
-  template <class Passes>
-  uint32_t split(Passes& passes, uint32_t begin, uint32_t end, int depth, Bounds& bounds) {
-    const NodeBoxes boxes = passes.boxes(begin, end);
-    bounds = boxes.box.bounds();
-    const Bounds centroids = boxes.centroids.bounds();
-    const uint32_t count = end - begin;
-    if (count <= 1) return end;
-    if (depth >= kMaxSahDepth) return median(begin, end, centroids);
-    const Binning binning(centroids);
-    const BinSplit best = cheapest(passes.bins(begin, end, binning), binning);
-    if (best.axis < 0) {
-      // All centroids coincide: split in the middle if the leaf would be too big.
-      return count <= kMaxLeafSize ? end : begin + count / 2;
-    }
-    const double area = bounds.surfaceArea();
-    const double splitCost = kTraversalCost + (area > 0 ? kIntersectionCost * best.cost / area : INFINITY);
-    if (count <= kMaxLeafSize && splitCost >= kIntersectionCost * count) return end;
-    const uint32_t mid = passes.partition(
-        begin, end, [&](const BuildItem& it) { return binning.bin(it, best.axis) <= best.bin; });
-    if (mid == begin || mid == end) return begin + count / 2;
-    return mid;
-  }
-
-  uint32_t median(uint32_t begin, uint32_t end, const Bounds& centroids) {
-    if (end - begin <= kMaxLeafSize) return end;
-    const int axis = centroids.longestAxis();
-    const uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
-                     [&](const BuildItem& a, const BuildItem& b) { return a.centroid[axis] < b.centroid[axis]; });
-    return mid;
   }
 
   RawArray<BuildItem>& items_;
@@ -505,6 +616,7 @@ class Collapser {
           if (n.count[i] == 0) n.child[i] += d.at;
     });
     wide.reserve(next);
+    prefault(wide.data(), next * sizeof(BvhNode), threads_);
     for (const Run& r : runs) {
       if (!r.deferred) {
         wide.push_back(top[r.index]);
@@ -618,14 +730,17 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   const int threads = buildThreads > 0 ? int(buildThreads) : threadBudget();
   const uint32_t total = uint32_t(primitives.size());
   // The bounded primitives' items, in primitive order: each block's are counted, then written
-  // where the blocks before leave off.
-  const Blocks blocks(total, threads, kGrain);
+  // where the blocks before leave off (one thread writes them as it finds them).
+  const bool alone = threads <= 1;
+  const Blocks blocks(total, threads, alone ? std::max<size_t>(total, 1) : kGrain);
   std::vector<uint32_t> firstItem(blocks.count + 1, 0);
-  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    uint32_t n = 0;
-    for (size_t i = lo; i < hi; ++i) n += !primitives[i].bounds().empty();
-    firstItem[b + 1] = n;
-  });
+  if (alone) firstItem[1] = total;  // at most
+  else
+    parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+      uint32_t n = 0;
+      for (size_t i = lo; i < hi; ++i) n += !primitives[i].bounds().empty();
+      firstItem[b + 1] = n;
+    });
   std::partial_sum(firstItem.begin(), firstItem.end(), firstItem.begin());
   RawArray<BuildItem> items(firstItem.back());
   std::vector<std::vector<uint32_t>> unbounded(blocks.count);
@@ -637,6 +752,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
       else items[k++] = {box, box.centroid(), uint32_t(i)};
     }
   });
+  if (alone) items.shrink(total - uint32_t(unbounded[0].size()));
   if (items.size() > 0) {
     RawArray<BuildNode> binary(2 * items.size() - 1);
     Builder builder(items, binary, threads);
@@ -655,7 +771,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
     for (uint32_t i : unbounded[b]) order[j++] = i;
   permuteInPlace(primitives, order, threads);
   prims_ = std::move(primitives);
-  items_.resize(prims_.size());
+  resizePrefaulted(items_, prims_.size(), threads);
   std::vector<uint64_t> transformBytes(blocks.count, 0);
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
     for (size_t i = lo; i < hi; ++i) {

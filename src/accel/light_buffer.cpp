@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 
 #include "parallel/parallel_for.h"
 
@@ -101,31 +102,23 @@ Footprint footprint(const RelativeBox& box, int face, int res) {
 // primitives, in radians; a face spans 2 in u), at most 256. Finer cells list fewer
 // primitives a segment misses but list each primitive in more cells; on 10^6 spheres 256
 // renders fastest (of 64 to 1024), and on 10^2 spheres two cells per size (of 1 to 8).
-int resolutionFor(const std::vector<LightBuffer::Occluder>& occluders, const Vec3& light, int threads) {
-  // The sizes a block at a time (the median does not depend on their order).
-  const Blocks blocks(occluders.size(), threads, kGrain);
-  std::vector<size_t> first(blocks.count + 1, 0);
-  std::vector<float> size(occluders.size());
-  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    size_t n = lo;
-    for (size_t i = lo; i < hi; ++i) {
-      const Bounds& box = occluders[i].box;
-      const double d = length(box.centroid() - light);
-      if (d > 0 && std::isfinite(d)) size[n++] = float(length(box.extent()) / d);
-    }
-    first[b + 1] = n - lo;
-  });
-  size_t n = 0;  // the sizes moved down over the gaps the blocks left
-  for (size_t b = 0; b < blocks.count; ++b) {
-    if (n != blocks.begin(b)) std::copy_n(size.begin() + ptrdiff_t(blocks.begin(b)), first[b + 1], size.begin() + ptrdiff_t(n));
-    n += first[b + 1];
-  }
-  size.resize(n);
+// `size` holds the sizes of the primitives of finite, nonzero distance, in primitive order.
+int resolutionFor(std::vector<float>& size) {
   if (size.empty()) return 8;
   std::nth_element(size.begin(), size.begin() + size.size() / 2, size.end());
   const double median = size[size.size() / 2];
   if (!(median > 0)) return 256;
   return int(std::clamp(std::ceil(4 / median), 8.0, 256.0));
+}
+
+// The apparent size of primitives [lo, hi) from the light, where it has one, appended to `out`.
+void sizesFrom(const Vec3& light, const std::vector<LightBuffer::Occluder>& occluders, size_t lo, size_t hi,
+               std::vector<float>& out) {
+  for (size_t i = lo; i < hi; ++i) {
+    const Bounds& box = occluders[i].box;
+    const double d = length(box.centroid() - light);
+    if (d > 0 && std::isfinite(d)) out.push_back(float(length(box.extent()) / d));
+  }
 }
 
 // The angle between two unit vectors, accurate for small angles too (acos of the dot
@@ -158,9 +151,10 @@ Cone coneOf(const LightBuffer::Occluder& o, const Vec3& light) {
 // same for every face, so kept for one.
 class CellCones {
  public:
-  explicit CellCones(int res) : res_(res), cells_(size_t(res) * res) {
+  CellCones(int res, int threads) : res_(res), cells_(size_t(res) * res) {
     const auto unit = [](double u, double v) { return normalize(Vec3{1, u, v}); };
-    for (int j = 0; j < res; ++j)
+    parallelIndices(size_t(res), threads, [&](size_t row) {
+      const int j = int(row);
       for (int i = 0; i < res; ++i) {
         const double u0 = 2.0 * i / res - 1, u1 = 2.0 * (i + 1) / res - 1;
         const double v0 = 2.0 * j / res - 1, v1 = 2.0 * (j + 1) / res - 1;
@@ -171,7 +165,9 @@ class CellCones {
         radius += 1e-9;  // the lookup's rounding of a direction on an edge
         cells_[size_t(j) * res + i] = {centre, std::sin(radius / 2), std::cos(radius / 2)};
       }
+    });
   }
+  int resolution() const { return res_; }
   // Whether the cone may meet cell (i, j) of `face`. Two cones meet when the angle between
   // their axes is at most the sum of their half-angles, i.e. when the chord between the
   // axes is at most 2 sin of half that sum (a well-conditioned test, unlike a dot product).
@@ -210,10 +206,48 @@ void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& con
 }  // namespace
 
 LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads)
-    : light_(light), res_(resolutionFor(occluders, light, threads)) {
-  const size_t cells = 6 * size_t(res_) * res_;
-  const size_t budget = kEntriesPerPrimitive * occluders.size() + 65536;
-  const CellCones cones(res_);
+    : LightBuffer(std::move(build({&light, 1}, occluders, threads)[0])) {}
+
+// All the lights' buffers at once, each step one parallel loop over the lights' blocks of
+// primitives or cells: a scene has fewer lights than a machine has threads.
+std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
+                                            int threads) {
+  const size_t count = lights.size();
+  std::vector<LightBuffer> out(count);
+  const Blocks blocks(occluders.size(), threads, kGrain);
+  // A light's block: [lo, hi) of the primitives (or of the cells).
+  struct Piece {
+    size_t light, block;
+  };
+  std::vector<Piece> pieces;
+  for (size_t l = 0; l < count; ++l)
+    for (size_t b = 0; b < blocks.count; ++b) pieces.push_back({l, b});
+
+  // The resolution: the median of the apparent sizes, found on one thread a light.
+  std::vector<std::vector<float>> sizes(pieces.size());
+  parallelIndices(pieces.size(), threads, [&](size_t p) {
+    sizes[p].reserve(blocks.end(pieces[p].block) - blocks.begin(pieces[p].block));
+    sizesFrom(lights[pieces[p].light], occluders, blocks.begin(pieces[p].block), blocks.end(pieces[p].block),
+              sizes[p]);
+  });
+  parallelIndices(count, threads, [&](size_t l) {
+    std::vector<float> all;
+    for (size_t b = 0; b < blocks.count; ++b) {
+      std::vector<float>& part = sizes[l * blocks.count + b];
+      all.insert(all.end(), part.begin(), part.end());
+      std::vector<float>().swap(part);
+    }
+    out[l].light_ = lights[l];
+    out[l].res_ = resolutionFor(all);
+  });
+  std::vector<std::unique_ptr<CellCones>> cones;  // one for each resolution the lights have
+  std::vector<const CellCones*> conesOf(count);
+  for (size_t l = 0; l < count; ++l) {
+    auto found = std::find_if(cones.begin(), cones.end(), [&](const auto& c) { return c->resolution() == out[l].res_; });
+    if (found == cones.end()) found = cones.insert(cones.end(), std::make_unique<CellCones>(out[l].res_, threads));
+    conesOf[l] = found->get();
+  }
+
   // Every (cell, entry) pair as the footprints and cones give them, a block of primitives at
   // a time, then moved to their cells: each footprint and cone is worked out once.
   struct Listing {
@@ -224,62 +258,91 @@ LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occlude
     std::vector<Listing> listings;
     std::vector<uint32_t> everywhere;
   };
-  const Blocks blocks(occluders.size(), threads, kGrain);
-  std::vector<Part> parts(blocks.count);
-  std::atomic<size_t> listed{0};  // by the blocks done so far
-  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    Part& part = parts[b];
-    part.listings.reserve(2 * (hi - lo));
-    for (size_t i = lo; i < hi; ++i) {
+  const size_t budget = kEntriesPerPrimitive * occluders.size() + 65536;
+  std::vector<Part> parts(pieces.size());
+  std::vector<std::atomic<size_t>> listed(count);  // by a light's blocks done so far
+  parallelIndices(pieces.size(), threads, [&](size_t p) {
+    const size_t l = pieces[p].light;
+    const Vec3& light = lights[l];
+    const int res = out[l].res_;
+    Part& part = parts[p];
+    part.listings.reserve(2 * (blocks.end(pieces[p].block) - blocks.begin(pieces[p].block)));
+    for (size_t i = blocks.begin(pieces[p].block); i < blocks.end(pieces[p].block); ++i) {
       if (occluders[i].box.empty()) continue;
       const RelativeBox box(occluders[i].box, light);
       Footprint f[6];
       int cellsSeen = 0;
-      for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res_)).cells();
+      for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res)).cells();
       if (box.holdsLight() || cellsSeen > kCrowded) {
         part.everywhere.push_back(uint32_t(i));
         continue;
       }
       const Entry e{roundDown(box.distance()), uint32_t(i)};
-      forEachCell(f, coneOf(occluders[i], light), cones, res_,
+      forEachCell(f, coneOf(occluders[i], light), *conesOf[l], res,
                   [&](int c) { part.listings.push_back({uint32_t(c), e}); });
       // No buffer (below) once the budget is spent: no need to list the rest.
-      if (part.listings.size() > budget || listed.load(std::memory_order_relaxed) > budget) break;
+      if (part.listings.size() > budget || listed[l].load(std::memory_order_relaxed) > budget) break;
     }
-    listed += part.listings.size();
+    listed[l] += part.listings.size();
   });
-  for (const Part& part : parts) everywhere_.insert(everywhere_.end(), part.everywhere.begin(), part.everywhere.end());
-  if (everywhere_.size() > kMaxEverywhere || listed > budget) {
-    // Too many primitives too big for cells: the BVH answers this light's segments better.
-    everywhere_.clear();
-    return;
+  std::vector<size_t> cells(count, 0);  // 0 for a light left without a buffer
+  for (size_t l = 0; l < count; ++l) {
+    LightBuffer& buffer = out[l];
+    for (size_t b = 0; b < blocks.count; ++b) {
+      const std::vector<uint32_t>& e = parts[l * blocks.count + b].everywhere;
+      buffer.everywhere_.insert(buffer.everywhere_.end(), e.begin(), e.end());
+    }
+    if (buffer.everywhere_.size() > kMaxEverywhere || listed[l] > budget) {
+      // Too many primitives too big for cells: the BVH answers this light's segments better.
+      buffer.everywhere_.clear();
+      for (size_t b = 0; b < blocks.count; ++b) std::vector<Listing>().swap(parts[l * blocks.count + b].listings);
+      continue;
+    }
+    cells[l] = 6 * size_t(buffer.res_) * buffer.res_;
   }
   // Each cell's entries in the order the blocks happen to put them there, then sorted: the
-  // lists are the same whatever that order.
-  std::vector<std::atomic<uint32_t>> filled(cells);
-  parallelIndices(parts.size(), threads, [&](size_t b) {
-    for (const Listing& l : parts[b].listings) filled[l.cell].fetch_add(1, std::memory_order_relaxed);
+  // lists are the same whatever that order. The cells' counts, then cursors, are updated
+  // atomically where several threads share them.
+  const bool shared = (threads > 0 ? threads : threadBudget()) > 1;
+  const auto bump = [shared](uint32_t& n) {
+    return shared ? std::atomic_ref<uint32_t>(n).fetch_add(1, std::memory_order_relaxed) : n++;
+  };
+  std::vector<std::vector<uint32_t>> filled(count);
+  parallelIndices(count, threads, [&](size_t l) { filled[l].assign(cells[l], 0); });
+  parallelIndices(pieces.size(), threads, [&](size_t p) {
+    for (const Listing& x : parts[p].listings) bump(filled[pieces[p].light][x.cell]);
   });
-  offsets_.resize(cells + 1);
-  offsets_[0] = 0;
-  for (size_t c = 0; c < cells; ++c) {
-    offsets_[c + 1] = offsets_[c] + filled[c].load(std::memory_order_relaxed);
-    filled[c].store(offsets_[c], std::memory_order_relaxed);
-  }
-  entries_.resize(offsets_[cells]);
-  parallelIndices(parts.size(), threads, [&](size_t b) {
-    for (const Listing& l : parts[b].listings)
-      entries_[filled[l.cell].fetch_add(1, std::memory_order_relaxed)] = l.entry;
-    std::vector<Listing>().swap(parts[b].listings);
+  parallelIndices(count, threads, [&](size_t l) {
+    if (cells[l] == 0) return;
+    LightBuffer& buffer = out[l];
+    buffer.offsets_.resize(cells[l] + 1);
+    buffer.offsets_[0] = 0;
+    for (size_t c = 0; c < cells[l]; ++c) {
+      buffer.offsets_[c + 1] = buffer.offsets_[c] + filled[l][c];
+      filled[l][c] = buffer.offsets_[c];
+    }
+    buffer.entries_.resize(buffer.offsets_[cells[l]]);
+  });
+  parallelIndices(pieces.size(), threads, [&](size_t p) {
+    std::vector<Entry>& entries = out[pieces[p].light].entries_;
+    std::vector<uint32_t>& at = filled[pieces[p].light];
+    for (const Listing& x : parts[p].listings) entries[bump(at[x.cell])] = x.entry;
+    std::vector<Listing>().swap(parts[p].listings);
   });
   constexpr size_t kCellsAtATime = 1024;
-  parallelIndices((cells + kCellsAtATime - 1) / kCellsAtATime, threads, [&](size_t k) {
-    for (size_t c = k * kCellsAtATime; c < std::min(cells, (k + 1) * kCellsAtATime); ++c)
-      std::sort(entries_.begin() + offsets_[c], entries_.begin() + offsets_[c + 1],
+  std::vector<Piece> cellRuns;  // a light's cells [block x kCellsAtATime, ...)
+  for (size_t l = 0; l < count; ++l)
+    for (size_t k = 0; k * kCellsAtATime < cells[l]; ++k) cellRuns.push_back({l, k});
+  parallelIndices(cellRuns.size(), threads, [&](size_t r) {
+    LightBuffer& buffer = out[cellRuns[r].light];
+    const size_t first = cellRuns[r].block * kCellsAtATime;
+    for (size_t c = first; c < std::min(cells[cellRuns[r].light], first + kCellsAtATime); ++c)
+      std::sort(buffer.entries_.begin() + buffer.offsets_[c], buffer.entries_.begin() + buffer.offsets_[c + 1],
                 [](const Entry& x, const Entry& y) {
                   return x.near < y.near || (x.near == y.near && x.primitive < y.primitive);
                 });
   });
+  return out;
 }
 
 int LightBuffer::cellIndexOf(const Vec3& d) const {

@@ -50,6 +50,9 @@ class LightBuffer {
   // `occluders[i]` is primitive i, for the first occluders.size() (bounded) primitives. Built
   // by up to `threads` threads (0: threadBudget()); the buffer is the same whatever the number.
   LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads = 0);
+  // The buffers of several lights, built together: buffer k is LightBuffer(lights[k], occluders).
+  static std::vector<LightBuffer> build(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
+                                        int threads = 0);
 
   // Whether the buffer was built (see kMaxEverywhere).
   bool valid() const { return !offsets_.empty(); }

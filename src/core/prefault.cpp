@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "parallel/parallel_for.h"
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #include <unistd.h>
@@ -52,9 +54,22 @@ std::future<void> prefaultAsync(const void* data, size_t bytes, size_t minBytes)
 #endif
 }
 
-void prefault(const void* data, size_t bytes) {
+void prefault(const void* data, size_t bytes, int threads, size_t minBytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  if (data == nullptr || bytes < minBytes) return;
   const Pages p = wholePages(data, bytes);
-  if (data != nullptr && p.end > p.begin) populate(p);
+  if (p.end <= p.begin) return;
+  const auto page = uintptr_t(sysconf(_SC_PAGESIZE));
+  const size_t pages = (p.end - p.begin) / page;
+  parallelBlocks(Blocks(pages, threads, (size_t(2) << 20) / page), threads, [&](size_t, size_t lo, size_t hi) {
+    populate({p.begin + lo * page, p.begin + hi * page});
+  });
+#else
+  (void)data;
+  (void)bytes;
+  (void)threads;
+  (void)minBytes;
+#endif
 }
 
 }  // namespace pvrt

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <future>
+#include <vector>
 
 namespace pvrt {
 
@@ -15,8 +16,21 @@ namespace pvrt {
 // must outlive the returned future's wait (its destructor waits).
 std::future<void> prefaultAsync(const void* data, size_t bytes, size_t minBytes = size_t(64) << 20);
 
-// The same on the calling thread, whatever the size: for a memory that several threads
-// fault in a part each.
-void prefault(const void* data, size_t bytes);
+// Faults in the pages of [data, data + bytes) now, a block of pages on each of up to `threads`
+// threads (0: threadBudget()), so that one thread about to fill that memory does not clear
+// every page itself. Nothing happens below `minBytes`, off Linux, or where the kernel does not
+// know the request.
+void prefault(const void* data, size_t bytes, int threads, size_t minBytes = size_t(4) << 20);
+
+// v.resize(n), the new elements' pages faulted in first by up to `threads` threads: for big
+// vectors that one thread then constructs, or that threads fill after their construction.
+template <class T>
+void resizePrefaulted(std::vector<T>& v, size_t n, int threads) {
+  if (n > v.size()) {
+    v.reserve(n);
+    prefault(v.data() + v.size(), (n - v.size()) * sizeof(T), threads);
+  }
+  v.resize(n);
+}
 
 }  // namespace pvrt

@@ -19,6 +19,25 @@ namespace pvrt {
 template <class T>
 void permuteInPlace(std::vector<T>& a, const std::vector<uint32_t>& order, int threads) {
   const size_t n = a.size();
+  if ((threads > 0 ? threads : threadBudget()) <= 1) {
+    // One thread turns each cycle as it finds it.
+    std::vector<bool> done(n, false);
+    for (size_t i = 0; i < n; ++i) {
+      if (done[i]) continue;
+      T first = std::move(a[i]);
+      for (size_t j = i;;) {
+        done[j] = true;
+        const size_t from = order[j];
+        if (from == i) {
+          a[j] = std::move(first);
+          break;
+        }
+        a[j] = std::move(a[from]);
+        j = from;
+      }
+    }
+    return;
+  }
   // The cycles one after another: slot seq[m] receives what slot seq[m + 1] holds, and the
   // last slot of a cycle what its first one holds.
   std::vector<uint32_t> seq;

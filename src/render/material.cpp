@@ -3,7 +3,9 @@
 #include <cmath>
 #include <functional>
 
+#include "core/prefault.h"
 #include "geometry/primitive.h"
+#include "parallel/parallel_for.h"
 
 namespace pvrt {
 
@@ -21,41 +23,109 @@ size_t hashOf(const Surface& s) {
 
 }  // namespace
 
-void MaterialTable::add(const MaterialDesc& desc, const Affine& objectToWorld) {
-  Material m;
+namespace {
+
+// What add() makes of an object's material before its surface is looked up among the
+// table's and its checker (if any) given its index.
+struct Made {
+  Material material;
+  Surface surface;
+  std::optional<Checker> checker;
+};
+
+Made make(const MaterialDesc& desc, const Affine& objectToWorld) {
+  Made made;
+  Material& m = made.material;
   const PigmentDesc& pd = desc.pigment;
   if (pd.checker) {
     m.color = pd.checker->color1;
-    Checker c{pd.checker->color2, std::nullopt};
+    made.checker = Checker{pd.checker->color2, std::nullopt};
     const Affine toWorld = pd.transforms.combined().then(objectToWorld);
-    if (!toWorld.isIdentity()) c.worldToPattern = toWorld.inverse();
-    m.checker = int32_t(checkers_.size());
-    checkers_.push_back(c);
+    if (!toWorld.isIdentity()) made.checker->worldToPattern = toWorld.inverse();
   } else {
     m.color = pd.color;
   }
   auto clear = [](const FilterColor& c) { return c.filter == 0 && c.transmit == 0; };
-  m.opaque = clear(m.color) && (m.checker < 0 || clear(checkers_.back().color2));
+  m.opaque = clear(m.color) && (!made.checker || clear(made.checker->color2));
 
-  Surface s;
+  Surface& s = made.surface;
   s.finish = desc.finish;
   s.interior = desc.interior;
   s.finish.loc = s.interior.loc = {};  // where it was written does not change how it shades
   s.specularExponent = 1.0 / desc.finish.roughness;
   s.reflective = !desc.finish.reflection.isZero();
   s.highlights = desc.finish.phong > 0 || desc.finish.specular > 0;
+  return made;
+}
+
+// The index of `s` among `surfaces` (indexed by `index`), added at the end if it is new.
+uint32_t surfaceIndex(const Surface& s, std::vector<Surface>& surfaces,
+                      std::unordered_multimap<size_t, uint32_t>& index) {
   const size_t h = hashOf(s);
-  const auto [first, last] = surfaceIndex_.equal_range(h);
-  auto found = first;
-  while (found != last && !(surfaces_[found->second] == s)) ++found;
-  if (found != last) {
-    m.surface = found->second;
-  } else {
-    m.surface = uint32_t(surfaces_.size());
-    surfaces_.push_back(s);
-    surfaceIndex_.emplace(h, m.surface);
+  const auto [first, last] = index.equal_range(h);
+  for (auto found = first; found != last; ++found)
+    if (surfaces[found->second] == s) return found->second;
+  surfaces.push_back(s);
+  index.emplace(h, uint32_t(surfaces.size() - 1));
+  return uint32_t(surfaces.size() - 1);
+}
+
+}  // namespace
+
+void MaterialTable::add(const MaterialDesc& desc, const Affine& objectToWorld) {
+  Made made = make(desc, objectToWorld);
+  if (made.checker) {
+    made.material.checker = int32_t(checkers_.size());
+    checkers_.push_back(std::move(*made.checker));
   }
-  materials_.push_back(m);
+  made.material.surface = surfaceIndex(made.surface, surfaces_, surfaceIndex_);
+  materials_.push_back(made.material);
+}
+
+void MaterialTable::addObjects(std::span<const ObjectDesc> objects, int threads) {
+  // A block of objects at a time, each block with surfaces and checkers of its own, in the
+  // order it meets them; those then join the table's block by block, which puts each where
+  // add() would have.
+  if ((threads > 0 ? threads : threadBudget()) <= 1) {
+    materials_.reserve(materials_.size() + objects.size());
+    for (const ObjectDesc& o : objects) add(o.material, o.transforms.combined());
+    return;
+  }
+  const size_t before = materials_.size();
+  resizePrefaulted(materials_, before + objects.size(), threads);
+  struct Part {
+    std::vector<Surface> surfaces;
+    std::vector<Checker> checkers;
+  };
+  const Blocks blocks(objects.size(), threads, 1024);
+  std::vector<Part> parts(blocks.count);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    Part& part = parts[b];
+    std::unordered_multimap<size_t, uint32_t> index;
+    for (size_t i = lo; i < hi; ++i) {
+      Made made = make(objects[i].material, objects[i].transforms.combined());
+      if (made.checker) {
+        made.material.checker = int32_t(part.checkers.size());
+        part.checkers.push_back(std::move(*made.checker));
+      }
+      made.material.surface = surfaceIndex(made.surface, part.surfaces, index);
+      materials_[before + i] = made.material;
+    }
+  });
+  std::vector<std::vector<uint32_t>> surfaceOf(blocks.count);  // a block's surface's index in the table
+  std::vector<int32_t> firstChecker(blocks.count);
+  for (size_t b = 0; b < blocks.count; ++b) {
+    for (const Surface& s : parts[b].surfaces) surfaceOf[b].push_back(surfaceIndex(s, surfaces_, surfaceIndex_));
+    firstChecker[b] = int32_t(checkers_.size());
+    checkers_.insert(checkers_.end(), parts[b].checkers.begin(), parts[b].checkers.end());
+  }
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) {
+      Material& m = materials_[before + i];
+      m.surface = surfaceOf[b][m.surface];
+      if (m.checker >= 0) m.checker += firstChecker[b];
+    }
+  });
 }
 
 FilterColor MaterialTable::checkerAt(const Material& m, const Vec3& worldPoint) const {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -45,6 +46,9 @@ class MaterialTable {
  public:
   // Adds the material of the next object; its index is the number added before.
   void add(const MaterialDesc& desc, const Affine& objectToWorld);
+  // add() for each object's material in turn, on up to `threads` threads (0: threadBudget()):
+  // the same table.
+  void addObjects(std::span<const ObjectDesc> objects, int threads = 0);
   void reserve(size_t objects) { materials_.reserve(objects); }
 
   size_t size() const { return materials_.size(); }

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/prefault.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
@@ -36,11 +37,17 @@ bool isDiagonal(const Affine& a) {
 // POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
 Vec3 toFloat(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
 
-// Makes an object's primitives at `out` onward (advancing it), or with `out` null only
-// counts them.
+// Where PrimitiveBuilder puts an object's primitives: at `at` onward (advancing it), else at
+// the end of `grow`; with neither it only counts them.
+struct PrimitiveSink {
+  Primitive* at = nullptr;
+  std::vector<Primitive>* grow = nullptr;
+  size_t made = 0;
+};
+
 class PrimitiveBuilder {
  public:
-  PrimitiveBuilder(Primitive*& out, uint32_t object, bool noShadow, const Affine& xf)
+  PrimitiveBuilder(PrimitiveSink& out, uint32_t object, bool noShadow, const Affine& xf)
       : out_(out), object_(object), noShadow_(noShadow), xf_(xf), identity_(xf.isIdentity()) {}
 
   void operator()(const SphereDesc& s) {
@@ -119,22 +126,18 @@ class PrimitiveBuilder {
     add(shape, false);
   }
   void add(Shape shape, bool keepTransform) {
-    ++made_;
-    if (!out_) return;
+    ++out_.made;
+    if (!out_.at && !out_.grow) return;
     Primitive p{std::move(shape), nullptr, object_, object_, noShadow_};
     if (keepTransform && !identity_) {
       if (!shared_) shared_ = share(Transform::from(xf_));  // one for all the object's primitives
       p.transform = shared_;
     }
-    *out_++ = std::move(p);
+    if (out_.at) *out_.at++ = std::move(p);
+    else out_.grow->push_back(std::move(p));
   }
 
- public:
-  size_t made() const { return made_; }
-
- private:
-  Primitive*& out_;
-  size_t made_ = 0;
+  PrimitiveSink& out_;
   uint32_t object_;
   bool noShadow_;
   Affine xf_;
@@ -147,10 +150,9 @@ class PrimitiveBuilder {
 size_t primitiveCount(const ObjectDesc& o) {
   if (const MeshDesc* mesh = std::get_if<MeshDesc>(&o.shape)) return mesh->triangles.size() + mesh->smoothTriangles.size();
   if (!std::holds_alternative<SmoothTriangleDesc>(o.shape)) return 1;
-  Primitive* none = nullptr;
-  PrimitiveBuilder count(none, 0, o.noShadow, o.transforms.combined());
-  std::visit(count, o.shape);
-  return count.made();
+  PrimitiveSink count;
+  std::visit(PrimitiveBuilder(count, 0, o.noShadow, o.transforms.combined()), o.shape);
+  return count.made;
 }
 
 EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
@@ -183,27 +185,32 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
 
   const std::vector<ObjectDesc>& objects = desc.objects;
   const int threads = threadBudget();
-  s.materials.reserve(objects.size());
-  for (const ObjectDesc& o : objects) s.materials.add(o.material, o.transforms.combined());
+  s.materials.addObjects(objects, threads);
   // The primitives, a block of objects at a time: each block's counted, then made where the
-  // blocks before leave off.
-  const Blocks blocks(objects.size(), threads, kObjectsAtATime);
+  // blocks before leave off (one thread appends them as it makes them).
+  const bool alone = threads <= 1;
+  const Blocks blocks(objects.size(), threads, alone ? std::max<size_t>(objects.size(), 1) : kObjectsAtATime);
   std::vector<size_t> first(blocks.count + 1, 0);
-  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
-  });
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<Primitive> prims(first.back());
+  std::vector<Primitive> prims;
+  if (alone) {
+    prims.reserve(objects.size());  // one each, but for meshes (which grow it)
+  } else {
+    parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+      for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
+    });
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    resizePrefaulted(prims, first.back(), threads);
+  }
   // Each block's primitives that hold the camera, and their bounds.
   std::vector<std::vector<uint32_t>> interiors(blocks.count);
   std::vector<Bounds> bounds(blocks.count);
   const Vec3 eye = s.camera.location();
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    Primitive* out = prims.data() + first[b];
+    PrimitiveSink sink{alone ? nullptr : prims.data() + first[b], alone ? &prims : nullptr};
     for (size_t i = lo; i < hi; ++i)
-      std::visit(PrimitiveBuilder(out, uint32_t(i), objects[i].noShadow, objects[i].transforms.combined()),
+      std::visit(PrimitiveBuilder(sink, uint32_t(i), objects[i].noShadow, objects[i].transforms.combined()),
                  objects[i].shape);
-    for (size_t k = first[b]; k < first[b + 1]; ++k) {
+    for (size_t k = alone ? 0 : first[b]; k < (alone ? prims.size() : first[b + 1]); ++k) {
       Primitive& p = prims[k];
       if (p.inside(eye)) interiors[b].push_back(p.object);
       p.opaque = s.materials[p.material].opaque;
@@ -251,8 +258,10 @@ void buildLightBuffers(Scene& s) {
     if (!s.lights[j].area && !s.lights[j].shadowless) which.push_back(j);
   if (which.empty() || s.bvh.primitives().empty()) return;
   const std::vector<LightBuffer::Occluder> occluders = s.bvh.occluders();
-  // One light at a time, each built by every thread: a scene has fewer lights than threads.
-  for (size_t j : which) s.lightBuffers[j] = LightBuffer(s.lights[j].location, occluders);
+  std::vector<Vec3> locations;
+  for (size_t j : which) locations.push_back(s.lights[j].location);
+  std::vector<LightBuffer> built = LightBuffer::build(locations, occluders);
+  for (size_t k = 0; k < which.size(); ++k) s.lightBuffers[which[k]] = std::move(built[k]);
   size_t bytes = 0;
   for (const LightBuffer& b : s.lightBuffers) bytes += b.bytes();
   s.prefetchLightBuffers = bytes > (size_t(16) << 20);

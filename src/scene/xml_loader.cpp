@@ -80,11 +80,7 @@ const std::vector<std::string_view>& knownAttributes(std::string_view element) {
 // 2-core VM.
 void reserveFaulted(std::vector<ObjectDesc>& objects, size_t count) {
   objects.reserve(count);
-  const size_t bytes = count * sizeof(ObjectDesc);
-  constexpr size_t kChunk = size_t(8) << 20;
-  const char* data = reinterpret_cast<const char*>(objects.data());
-  parallelIndices((bytes + kChunk - 1) / kChunk, 0,
-                  [&](size_t i) { prefault(data + i * kChunk, std::min(kChunk, bytes - i * kChunk)); });
+  prefault(objects.data(), count * sizeof(ObjectDesc), 0, 0);
 }
 
 // The objects of a big file are constructed by one thread (a std::vector constructs its

@@ -2,6 +2,8 @@
 // objects whose finishes and interiors are equal, wherever they were written.
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "render/material.h"
 
 namespace pvrt {
@@ -85,6 +87,44 @@ TEST(MaterialTable, CheckerPigment) {
   EXPECT_EQ(table.pigmentAt(mat, {1.75, 0.5, 0.5}).transmit, 0.5);
   // A point a rounding error below a cell's plane falls in the upper cell, as in POV-Ray.
   EXPECT_EQ(table.pigmentAt(mat, {0.5 - 1e-12, 0.5, 0.5}).rgb, (Color{1, 1, 1}));
+}
+
+// addObjects builds, on any number of threads, the table that add() builds one object at a
+// time: the same materials, surfaces in the same order, the same checkers.
+TEST(MaterialTable, AddObjectsIsAddInTurn) {
+  std::vector<ObjectDesc> objects(20000);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    MaterialDesc& m = objects[i].material;
+    m = solid({0.1 * double(i % 7), 0.5, 1}, 0.1 * double(1 + (i * 7919) % 9), i % 13 == 0 ? 1.5 : 1);
+    if (i % 5 == 0) m.finish.phong = 0.5;
+    if (i % 17 == 0) m.pigment.color.filter = 0.3;
+    if (i % 11 == 0) m.pigment.checker = CheckerDesc{{{1, 1, 1}, 0, 0}, {{0, 0, 0}, 0, i % 2 ? 0.5 : 0.0}};
+    if (i % 3 == 0) objects[i].transforms.steps.push_back({TransformStep::Kind::Translate, {double(i), 0, 1}, {}, {}});
+  }
+  MaterialTable one;
+  for (const ObjectDesc& o : objects) one.add(o.material, o.transforms.combined());
+  ASSERT_GT(one.surfaces().size(), 20u);
+  for (int threads : {1, 2, 3, 8}) {
+    MaterialTable many;
+    many.addObjects(objects, threads);
+    ASSERT_EQ(many.size(), one.size());
+    EXPECT_EQ(many.surfaces(), one.surfaces()) << threads << " threads";
+    for (size_t i = 0; i < one.size(); ++i) {
+      const Material &a = one[i], &b = many[i];
+      ASSERT_EQ(a.color, b.color) << "object " << i << ", " << threads << " threads";
+      ASSERT_EQ(a.surface, b.surface) << "object " << i << ", " << threads << " threads";
+      ASSERT_EQ(a.checker, b.checker) << "object " << i << ", " << threads << " threads";
+      ASSERT_EQ(a.opaque, b.opaque) << "object " << i << ", " << threads << " threads";
+      if (a.checker < 0) continue;
+      const Checker &ca = one.checker(a), &cb = many.checker(b);
+      ASSERT_EQ(ca.color2, cb.color2);
+      ASSERT_EQ(ca.worldToPattern.has_value(), cb.worldToPattern.has_value());
+      const Vec3 p{0.3, 1.7, -2.1};
+      if (ca.worldToPattern) {
+        ASSERT_EQ(ca.worldToPattern->applyPoint(p), cb.worldToPattern->applyPoint(p));
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -2,6 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+
+#include "generate/random_scene.h"
+#include "parallel/threads.h"
 
 #include "test_scenes.h"
 
@@ -157,6 +161,94 @@ TEST(Render, SceneBuiltFromAConsumedDescriptionIsTheSame) {
   EXPECT_EQ(b.image.data(), a.image.data());
   EXPECT_EQ(b.totals.work(), a.totals.work());
   EXPECT_GT(a.totals.refractedRays, 0u);
+}
+
+// buildScene makes the same scene on any number of threads (it uses threadBudget()): the
+// same primitives in the same order, materials, camera interiors, tolerances, tree and light
+// buffers. 30,000 spheres make blocks of objects; a mesh and lone smooth triangles (one
+// degenerate, which makes no primitive) give blocks other counts than their objects'; the
+// camera sits inside two spheres and a transformed box.
+TEST(Render, TheSceneDoesNotDependOnTheBuildThreads) {
+  GenerateOptions options;
+  options.spheres = 30000;
+  options.lights = 3;
+  options.seed = 9;
+  options.radiusMin *= radiusScaleFor(options.spheres);
+  options.radiusMax *= radiusScaleFor(options.spheres);
+  SceneDesc desc = generateScene(options);
+  const Vec3 eye = desc.camera.location;
+  auto insert = [&](size_t at, ShapeDesc shape, bool transformed = false) {
+    ObjectDesc o;
+    o.shape = std::move(shape);
+    o.material.finish.phong = double(at % 3) * 0.3;
+    if (transformed) {  // turned about the origin, then moved to the camera
+      o.transforms.steps.push_back({TransformStep::Kind::Rotate, {10, 20, 30}, {}, {}});
+      o.transforms.steps.push_back({TransformStep::Kind::Translate, eye, {}, {}});
+    }
+    desc.objects.insert(desc.objects.begin() + std::ptrdiff_t(at), std::move(o));
+  };
+  MeshDesc mesh;
+  for (int i = 0; i < 60; ++i) {
+    const Vec3 p{0.1 * i, 1, 3};
+    mesh.triangles.push_back({p, p + Vec3{0.1, 0, 0}, p + Vec3{0, 0.1, 0}, {}});
+    mesh.smoothTriangles.push_back({p, {0, 0, 1}, p + Vec3{0.1, 0, 0.1}, {0, 1, 1}, p + Vec3{0, 0.1, 0}, {1, 0, 1}, {}});
+  }
+  insert(5000, mesh);
+  insert(9000, SmoothTriangleDesc{{0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 0, -1}, {0, 2, 0}, {0, 0, 1}, {}});  // degenerate
+  insert(12000, SmoothTriangleDesc{{0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 0.1, 1}, {0, 2, 0}, {0.1, 0, 1}, {}});
+  insert(15000, SphereDesc{eye, 1});
+  insert(21000, SphereDesc{eye + Vec3{0.1, 0, 0}, 2});
+  insert(26000, BoxDesc{Vec3(-1), Vec3(1)}, true);
+  auto build = [&](int threads) {
+    setThreadBudget(threads);
+    Scene scene = buildScene(desc);
+    setThreadBudget(0);
+    return scene;
+  };
+  const Scene one = build(1);
+  ASSERT_EQ(one.cameraInteriors.count, 3);
+  for (int threads : {2, 3, 8}) {
+    const Scene many = build(threads);
+    const auto &a = one.bvh.primitives(), &b = many.bvh.primitives();
+    ASSERT_EQ(a.size(), b.size()) << threads << " threads";
+    ASSERT_EQ(a.size(), desc.objects.size() - 1 + 120 - 1);  // the mesh's 120, no degenerate one
+    for (size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(a[i].object, b[i].object) << "primitive " << i << ", " << threads << " threads";
+      ASSERT_EQ(a[i].material, b[i].material) << "primitive " << i;
+      ASSERT_EQ(a[i].opaque, b[i].opaque) << "primitive " << i;
+      ASSERT_EQ(a[i].unit, b[i].unit) << "primitive " << i;
+      ASSERT_EQ(a[i].shape.index(), b[i].shape.index()) << "primitive " << i;
+      ASSERT_EQ(a[i].bounds().lo, b[i].bounds().lo) << "primitive " << i;
+      ASSERT_EQ(a[i].bounds().hi, b[i].bounds().hi) << "primitive " << i;
+    }
+    ASSERT_EQ(one.materials.size(), many.materials.size());
+    EXPECT_EQ(one.materials.surfaces(), many.materials.surfaces());
+    for (size_t i = 0; i < one.materials.size(); ++i) {
+      ASSERT_EQ(one.materials[i].surface, many.materials[i].surface) << "material " << i;
+      ASSERT_EQ(one.materials[i].checker, many.materials[i].checker) << "material " << i;
+      ASSERT_EQ(one.materials[i].color, many.materials[i].color) << "material " << i;
+    }
+    ASSERT_EQ(one.cameraInteriors.count, many.cameraInteriors.count);
+    for (int k = 0; k < one.cameraInteriors.count; ++k)
+      EXPECT_EQ(one.cameraInteriors.ids[k], many.cameraInteriors.ids[k]);
+    EXPECT_EQ(one.tol.unit, many.tol.unit);
+    EXPECT_EQ(one.effects, many.effects);
+    ASSERT_EQ(one.bvh.nodes().size(), many.bvh.nodes().size());
+    for (size_t i = 0; i < one.bvh.nodes().size(); ++i) {
+      const BvhNode &x = one.bvh.nodes()[i], &y = many.bvh.nodes()[i];
+      ASSERT_EQ(0, std::memcmp(x.quad, y.quad, sizeof x.quad)) << "node " << i;
+      ASSERT_EQ(0, std::memcmp(x.child, y.child, sizeof x.child)) << "node " << i;
+      ASSERT_EQ(0, std::memcmp(x.count, y.count, sizeof x.count)) << "node " << i;
+    }
+    ASSERT_EQ(one.lightBuffers.size(), many.lightBuffers.size());
+    for (size_t l = 0; l < one.lightBuffers.size(); ++l) {
+      const LightBuffer &x = one.lightBuffers[l], &y = many.lightBuffers[l];
+      ASSERT_EQ(x.valid(), y.valid());
+      ASSERT_EQ(x.entries(), y.entries());
+      for (int c = 0; x.valid() && c < 6 * x.resolution() * x.resolution(); ++c)
+        ASSERT_EQ(0, std::memcmp(x.list(c).data(), y.list(c).data(), x.list(c).size_bytes())) << "cell " << c;
+    }
+  }
 }
 
 }  // namespace
