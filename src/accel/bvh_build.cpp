@@ -2,11 +2,11 @@
 // cheapest split kept), collapsed into the wide one.
 //
 // Every thread count builds the same tree, bit for bit. The nodes big enough to share (the
-// top of the tree) are built one at a time by all the threads together: each pass over their
-// items (bounds, bins, partition) is cut into blocks whose results are combined in block
+// top of the tree) are built a level at a time by all the threads together: each pass over
+// their items (boxes, bins, partition) is cut into blocks whose results are combined in block
 // order, and combine exactly (a box's min and max, a bin's count), so that they are what one
 // pass over all the items gives. The subtrees below them are then built at the same time,
-// each by one thread, into slots set aside for them.
+// each by one thread, into slots set aside for them, and collapsed at the same time.
 #include <algorithm>
 #include <array>
 #include <chrono>
