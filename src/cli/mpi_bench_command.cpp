@@ -13,6 +13,8 @@
 
 #include <fmt/core.h>
 #include <fmt/os.h>
+#define IMATH_HALF_NO_LOOKUP_TABLE  // float to half only: header-only, no Imath library to link
+#include <Imath/half.h>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -67,8 +69,8 @@ std::pair<double, double> timeConversions(size_t pixels) {
   const std::vector<uint8_t> srgb = encodeSrgb8(share);
   const double srgbS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
-  std::vector<_Float16> half(share.data().size());
-  std::transform(share.data().begin(), share.data().end(), half.begin(), [](float v) { return _Float16(v); });
+  std::vector<Imath::half> half(share.data().size());
+  std::transform(share.data().begin(), share.data().end(), half.begin(), [](float v) { return Imath::half(v); });
   const double halfS = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (srgb.empty() || half.empty()) throw Error(ExitCode::Internal, "mpi-bench: empty conversion");
   return {srgbS, halfS};
