@@ -206,8 +206,7 @@ class HeldItems {
 // The master/worker strategy. Rank 0 holds the queue (an atomic counter over the items):
 // its threads render from it (unless --no-master-renders), and its thread 0 answers the
 // other ranks' requests between the rows of its own items, sleeping while it has nothing
-// else to do,
-// so it never takes a CPU from a worker. A worker asks for as many items as it has threads
+// else to do, so it never takes a CPU from a worker. A worker asks for as many items as it has threads
 // and asks again as soon as it holds no more than that, so the answer comes while it
 // renders; every thread renders whole items, as OpenMP's tiles schedule does (thread 0 of
 // a rank with several threads a row at a time, minding the messages between rows).
@@ -273,7 +272,9 @@ void renderDynamic(RankRenderer& local, int items, const DistributedSettings& d)
         else
           local.renderItem(i, worker);
       } else if (worker == 0) {
-        held.add(request.take());  // nothing to render until the answer comes
+        // Nothing to render until the answer comes (none is pending when the other threads
+        // emptied the hand since feed() looked: the next feed() asks).
+        if (request.pending()) held.add(request.take());
       } else {
         std::this_thread::sleep_for(std::chrono::microseconds(20));
       }
