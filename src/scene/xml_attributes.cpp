@@ -62,10 +62,10 @@ std::string attr(const char* name) { return "attribute '" + std::string(name) + 
 
 bool separator(char c) { return c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r'; }
 
-// How many words `text` has (as words() cuts them); the first `max` of them go to `out`.
-// Without a vector: a big scene reads millions of vectors.
-size_t wordsIn(const char* text, std::string_view* out, size_t max) {
-  size_t n = 0;
+// Calls f(word) for every word of `text` (words are separated by spaces, commas, tabs and
+// line ends).
+template <class F>
+void forEachWord(const char* text, F&& f) {
   for (const char* p = text; *p;) {
     if (separator(*p)) {
       ++p;
@@ -73,9 +73,18 @@ size_t wordsIn(const char* text, std::string_view* out, size_t max) {
     }
     const char* start = p;
     while (*p && !separator(*p)) ++p;
-    if (n < max) out[n] = std::string_view(start, size_t(p - start));
-    ++n;
+    f(std::string_view(start, size_t(p - start)));
   }
+}
+
+// How many words `text` has; the first `max` of them go to `out`. Without a vector: a big
+// scene reads millions of vectors.
+size_t wordsIn(const char* text, std::string_view* out, size_t max) {
+  size_t n = 0;
+  forEachWord(text, [&](std::string_view w) {
+    if (n < max) out[n] = w;
+    ++n;
+  });
   return n;
 }
 
@@ -104,15 +113,7 @@ std::string printable(std::string_view text, size_t max) {
 
 std::vector<std::string_view> words(const char* text) {
   std::vector<std::string_view> out;
-  for (const char* p = text; *p;) {
-    if (separator(*p)) {
-      ++p;
-      continue;
-    }
-    const char* start = p;
-    while (*p && !separator(*p)) ++p;
-    out.emplace_back(start, size_t(p - start));
-  }
+  forEachWord(text, [&](std::string_view w) { out.push_back(w); });
   return out;
 }
 
