@@ -25,6 +25,7 @@
 #include "render/distributed.h"
 #include "render/renderer.h"
 #include "render/time_budget.h"
+#include "core/memory_use.h"
 #include "scene/xml_loader.h"
 #include "scene/xml_writer.h"
 
@@ -65,8 +66,13 @@ struct RenderOptions {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+struct StagePeaks {
+  size_t load = 0, build = 0;  // peak resident bytes at the end of load and of build
+};
+
 void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& scene, const RenderResult& r,
-                double loadS, double buildS, double writeS, const std::vector<RankStats>& ranks = {}) {
+                double loadS, double buildS, double writeS, StagePeaks peaks,
+                const std::vector<RankStats>& ranks = {}) {
   const RenderStats& t = r.totals;
   auto line = [](const char* what, uint64_t n) { fmt::print("  {:<22}{:>16}\n", what, n); };
   fmt::print("Render statistics\n");
@@ -113,6 +119,9 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", loadS,
              buildS, r.seconds, writeS);
   fmt::print("  Rays per second       {:.0f}\n", r.seconds > 0 ? double(t.totalRays()) / r.seconds : 0.0);
+  const auto mib = [](size_t bytes) { return double(bytes) / double(1 << 20); };
+  fmt::print("  Peak memory           {:.1f} MiB (after load {:.1f}, after build {:.1f}){}\n",
+             mib(peakResidentBytes()), mib(peaks.load), mib(peaks.build), ranks.empty() ? "" : ", rank 0");
   if (!ranks.empty()) {
     fmt::print("  Gather                {}\n", o.gatherName);
     fmt::print("  {:<6}{:>7}{:>10}{:>16}{:>11}{:>10}{:>10}{:>10}{:>12}\n", "Rank", "items", "pixels", "work",
@@ -195,6 +204,7 @@ struct Prepared {
   RenderSettings settings;
   Scene scene;
   double loadS = 0, buildS = 0;
+  size_t loadPeak = 0, buildPeak = 0;  // peak resident bytes at the end of each stage
 };
 
 Prepared prepare(const RenderOptions& o) {
@@ -208,6 +218,7 @@ Prepared prepare(const RenderOptions& o) {
   const auto t0 = Clock::now();
   p.desc = loadSceneFile(o.scene);
   p.loadS = since(t0);
+  p.loadPeak = peakResidentBytes();
 
   RenderSettings& s = p.settings;
   s.width = o.width > 0 ? o.width : (p.desc.image ? p.desc.image->width : 320);
@@ -243,6 +254,7 @@ Prepared prepare(const RenderOptions& o) {
   const auto t1 = Clock::now();
   p.scene = buildScene(std::move(p.desc));  // frees the objects' descriptions early
   p.buildS = since(t1);
+  p.buildPeak = peakResidentBytes();
   return p;
 }
 
@@ -273,7 +285,7 @@ int runLocal(const RenderOptions& o) {
   writeImage(r.image, o.output);
   if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.load, s.width, s.height);
   const double writeS = since(t2);
-  if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS);
+  if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS, {p.loadPeak, p.buildPeak});
   if (!o.quiet && !o.stats) fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, s.width, s.height, since(start));
   return 0;
 }
@@ -340,7 +352,7 @@ int runMpi(const RenderOptions& o) {
   writeImage(r.render.image, o.output);
   if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.render.load, s.width, s.height);
   const double writeS = since(t2);
-  if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, r.ranks);
+  if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, {p->loadPeak, p->buildPeak}, r.ranks);
   if (!o.quiet && !o.stats)
     fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, s.width, s.height, cluster::size(),
                r.render.seconds);

@@ -35,10 +35,18 @@ Kind pick(const Palette& p, double u) {
   return p.glass > 0 ? Kind::Glass : (p.mirror > 0 ? Kind::Mirror : (p.shiny > 0 ? Kind::Shiny : Kind::Matte));
 }
 
-MaterialDesc material(Kind kind, const Color& c) {
+// Equal finishes and interiors share one copy (core/shared_value.h): a million spheres
+// have four finishes between them.
+struct Shared {
+  SharingPool<FinishDesc> finishes;
+  SharingPool<InteriorDesc> interiors;
+};
+
+MaterialDesc material(Kind kind, const Color& c, Shared& shared) {
   MaterialDesc m;
   m.pigment.color = {c, 0, 0};
-  FinishDesc& f = m.finish;
+  FinishDesc f;
+  InteriorDesc interior;
   f.ambient = Color(0.1);
   f.diffuse = 0.7;
   switch (kind) {
@@ -61,9 +69,11 @@ MaterialDesc material(Kind kind, const Color& c) {
       f.phong = 0.9;
       f.phongSize = 120;
       f.reflection.min = f.reflection.max = Color(0.1);
-      m.interior.ior = 1.5;
+      interior.ior = 1.5;
       break;
   }
+  m.finish = shared.finishes.share(f);
+  m.interior = shared.interiors.share(interior);
   return m;
 }
 
@@ -100,10 +110,12 @@ SceneDesc generateScene(const GenerateOptions& o) {
   if (o.floor) {
     ObjectDesc floor;
     floor.shape = PlaneDesc{{0, 1, 0}, 0};
-    floor.material.pigment.checker = CheckerDesc{{{0.85, 0.85, 0.85}, 0, 0}, {{0.25, 0.3, 0.4}, 0, 0}};
-    floor.material.finish.diffuse = 0.7;
+    floor.material.pigment.checker =
+        std::make_shared<const CheckerDesc>(CheckerDesc{{{0.85, 0.85, 0.85}, 0, 0}, {{0.25, 0.3, 0.4}, 0, 0}});
+    floor.material.finish.edit([](FinishDesc& f) { f.diffuse = 0.7; });
     s.objects.push_back(floor);
   }
+  Shared shared;
   for (int i = 0; i < o.spheres; ++i) {
     const double x = rng.in(o.sphereBoxLo.x, o.sphereBoxHi.x);
     double y = rng.in(o.sphereBoxLo.y, o.sphereBoxHi.y);
@@ -114,7 +126,7 @@ SceneDesc generateScene(const GenerateOptions& o) {
     if (o.floor) y = std::max(y, r);  // rest on the floor rather than sink into it
     ObjectDesc sphere;
     sphere.shape = SphereDesc{{x, y, z}, r};
-    sphere.material = material(kind, c);
+    sphere.material = material(kind, c, shared);
     s.objects.push_back(sphere);
   }
   return s;

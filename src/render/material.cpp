@@ -49,12 +49,11 @@ Made make(const MaterialDesc& desc, const Affine& objectToWorld) {
   m.opaque = clear(m.color) && (!made.checker || clear(made.checker->color2));
 
   Surface& s = made.surface;
-  s.finish = desc.finish;
-  s.interior = desc.interior;
-  s.finish.loc = s.interior.loc = {};  // where it was written does not change how it shades
-  s.specularExponent = 1.0 / desc.finish.roughness;
-  s.reflective = !desc.finish.reflection.isZero();
-  s.highlights = desc.finish.phong > 0 || desc.finish.specular > 0;
+  s.finish = *desc.finish;
+  s.interior = *desc.interior;
+  s.specularExponent = 1.0 / desc.finish->roughness;
+  s.reflective = !desc.finish->reflection.isZero();
+  s.highlights = desc.finish->phong > 0 || desc.finish->specular > 0;
   return made;
 }
 

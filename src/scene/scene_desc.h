@@ -5,12 +5,14 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "core/color.h"
+#include "core/shared_value.h"
 #include "core/source_loc.h"
 #include "core/transform.h"
 #include "core/vec3.h"
@@ -99,7 +101,9 @@ struct CheckerDesc {
 
 struct PigmentDesc {
   FilterColor color{{0, 0, 0}, 0, 0};
-  std::optional<CheckerDesc> checker;  // when set, `color` is unused
+  // When set, `color` is unused. Held apart: most pigments are plain colours, and a scene
+  // of a million of them should not carry room for two more colours each.
+  std::shared_ptr<const CheckerDesc> checker;
   TransformList transforms;            // pattern space, applied before the object's
   bool hasTransparency() const;
   SourceLoc loc;
@@ -128,7 +132,6 @@ struct FinishDesc {
   double metallic = 0;
   bool conserveEnergy = false;
   ReflectionDesc reflection;
-  SourceLoc loc;
   bool operator==(const FinishDesc&) const = default;
 };
 
@@ -137,15 +140,19 @@ struct InteriorDesc {
   double fadeDistance = 0;
   double fadePower = 0;
   Color fadeColor{0, 0, 0};
-  SourceLoc loc;
   bool operator==(const InteriorDesc&) const = default;
 };
 
+// Finishes and interiors are shared values (core/shared_value.h): a scene has few of each,
+// and the loader gives equal ones one copy, so an object's material costs ~150 bytes, not
+// ~490 (a million spheres: 10^6 x 712 bytes of description before, docs/parallel.md).
+// They carry no location of their own: nothing reports one, and equal ones written on
+// different lines could not then be shared; the material's `loc` says where it was written.
 struct MaterialDesc {
   std::string name;  // empty for an inline material
   PigmentDesc pigment;
-  FinishDesc finish;
-  InteriorDesc interior;
+  SharedValue<FinishDesc> finish;
+  SharedValue<InteriorDesc> interior;
   SourceLoc loc;
 };
 

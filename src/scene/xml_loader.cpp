@@ -582,10 +582,10 @@ class Loader {
       m.pigment = pigment(c);
     } else if (name == "finish") {
       once(c, fin);
-      m.finish = finish(c);
+      m.finish = finishes_.share(finish(c));
     } else if (name == "interior") {
       once(c, inte);
-      m.interior = interior(c);
+      m.interior = interiors_.share(interior(c));
     } else {
       return false;
     }
@@ -621,7 +621,7 @@ class Loader {
       k.color2 = filterColor(b, "color2", "filter2", "transmit2", k.color2);
       b.done();
       noChildren(c);
-      p.checker = k;
+      p.checker = std::make_shared<const CheckerDesc>(k);
     }
     checkSingular(e, p.transforms);
     return p;
@@ -630,7 +630,6 @@ class Loader {
   FinishDesc finish(const XMLElement* e) {
     Attributes a = attrs(e);
     FinishDesc f;
-    f.loc = a.loc();
     f.ambient = a.color("ambient", f.ambient);
     f.emission = a.color("emission", f.emission);
     f.diffuse = a.number("diffuse", f.diffuse);
@@ -670,7 +669,6 @@ class Loader {
   InteriorDesc interior(const XMLElement* e) {
     Attributes a = attrs(e);
     InteriorDesc in;
-    in.loc = a.loc();
     in.ior = a.positive("ior", in.ior);
     // Far beyond any material; at about 1e9 the refraction overflows to infinite pixels.
     if (in.ior > 1000) throw a.error("attribute 'ior' must be at most 1000, got " + printable(e->Attribute("ior")));
@@ -860,6 +858,9 @@ class Loader {
   bool ahead_ = false;  // Mode::Ahead
   SceneDesc scene_;
   std::unordered_map<std::string, size_t> materialIndex_;  // scene_.materials by name
+  // Equal finishes and interiors read by this loader share one copy (core/shared_value.h).
+  SharingPool<FinishDesc> finishes_;
+  SharingPool<InteriorDesc> interiors_;
   bool haveCamera_ = false, haveGlobals_ = false, haveBackground_ = false;
   int lineOffset_ = 0;  // added to tinyxml2's line numbers: nonzero while reading a piece
   // While a piece is read, its objects go to places_[next_, end_) (see placeIn).

@@ -140,13 +140,13 @@ class Writer {
       if (attrs.empty()) attrs = " color=\"0 0 0\"";  // always write the pigment: it is the common case
     }
     element(depth, "pigment", attrs, children);
-    finish(m.finish, depth);
-    const InteriorDesc& in = m.interior;
+    finish(*m.finish, depth);
+    const InteriorDesc& in = *m.interior;
     std::string ia;
-    if (in.ior != d.interior.ior) ia += " ior=\"" + num(in.ior) + "\"";
+    if (in.ior != d.interior->ior) ia += " ior=\"" + num(in.ior) + "\"";
     if (in.fadeDistance != 0) ia += " fade_distance=\"" + num(in.fadeDistance) + "\"";
     if (in.fadePower != 0) ia += " fade_power=\"" + num(in.fadePower) + "\"";
-    if (!(in.fadeColor == d.interior.fadeColor)) ia += " fade_color=\"" + col(in.fadeColor) + "\"";
+    if (!(in.fadeColor == d.interior->fadeColor)) ia += " fade_color=\"" + col(in.fadeColor) + "\"";
     if (!ia.empty()) line(depth, "<interior" + ia + "/>");
   }
 

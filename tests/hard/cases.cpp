@@ -124,7 +124,7 @@ ExpectedImage spheresAndPlanes(const CaseInput& in) {
     const MaterialDesc& m = *hit->material;
     const V pig = fromColor(m.pigment.color.rgb);
     const LD alpha = 1 - m.pigment.color.filter - m.pigment.color.transmit;
-    V c = mul(mul(pig, fromColor(m.finish.ambient)), ambientLight) * alpha + mul(pig, fromColor(m.finish.emission)) * alpha;
+    V c = mul(mul(pig, fromColor(m.finish->ambient)), ambientLight) * alpha + mul(pig, fromColor(m.finish->emission)) * alpha;
     if (light) {
       const V toLight = V(light->location) - p;
       const LD dist = len(toLight);
@@ -147,7 +147,7 @@ ExpectedImage spheresAndPlanes(const CaseInput& in) {
           }
         }
         if (nl >= 1e-10L && !blocked) {
-          const LD k = m.finish.diffuse * nl * alpha;
+          const LD k = m.finish->diffuse * nl * alpha;
           c = c + mul(pig, fromColor(light->color)) * k;
           e.litTerm = double(k * std::max({pig.x, pig.y, pig.z}));
         }
@@ -163,7 +163,7 @@ const MaterialDesc& firstMaterial(const SceneDesc& s) { return s.objects.front()
 }  // namespace
 
 ExpectedImage tirSlab(const CaseInput& in) {
-  const LD n = firstMaterial(in.scene).interior.ior;
+  const LD n = firstMaterial(in.scene).interior->ior;
   const LD cosCritical = std::sqrt(1 - 1 / (n * n));
   return forEachPixel(in, [&](const PixelRay& ray) {
     Expected e;
@@ -176,7 +176,7 @@ ExpectedImage tirSlab(const CaseInput& in) {
 
 ExpectedImage tirSphere(const CaseInput& in) {
   const auto& s = std::get<SphereDesc>(in.scene.objects.front().shape);
-  const LD n = firstMaterial(in.scene).interior.ior;
+  const LD n = firstMaterial(in.scene).interior->ior;
   return forEachPixel(in, [&](const PixelRay& ray) {
     Expected e;
     const LD p = len(cross(V(s.center) - ray.o, ray.d));
@@ -189,7 +189,7 @@ ExpectedImage tirSphere(const CaseInput& in) {
 
 ExpectedImage facingMirrors(const CaseInput& in) {
   const MaterialDesc& m = firstMaterial(in.scene);
-  const Color each = m.pigment.color.rgb * m.finish.ambient * in.scene.globals.ambientLight;
+  const Color each = m.pigment.color.rgb * m.finish->ambient * in.scene.globals.ambientLight;
   return forEachPixel(in, [&](const PixelRay&) {
     Expected e;
     e.c = each * double(in.scene.globals.maxTraceLevel);
@@ -247,7 +247,7 @@ struct CoplanarParts {
 CoplanarParts coplanarParts(const SceneDesc& s) {
   CoplanarParts c;
   for (const ObjectDesc& o : s.objects) {
-    const Color col = o.material.pigment.color.rgb * o.material.finish.ambient;
+    const Color col = o.material.pigment.color.rgb * o.material.finish->ambient;
     if (const auto* p = std::get_if<SphereDesc>(&o.shape); p && !c.sphere) c.sphere = p, c.sphereColor = col;
     if (const auto* p = std::get_if<PlaneDesc>(&o.shape); p && !c.plane) c.plane = p, c.planeColor = col;
     if (const auto* p = std::get_if<DiscDesc>(&o.shape); p && !c.disc) c.disc = p, c.discColor = col;

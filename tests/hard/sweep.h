@@ -33,7 +33,7 @@ inline Vec3 sweepPoint(const Vec3& p, const Sweep& s) { return p * s.scale + Vec
 inline SceneDesc applySweep(SceneDesc d, const Sweep& s) {
   for (ObjectDesc& o : d.objects) {
     appendSweep(o.transforms, s);
-    o.material.interior.fadeDistance *= s.scale;
+    o.material.interior.edit([&](InteriorDesc& v) { v.fadeDistance *= s.scale; });
   }
   appendSweep(d.camera.transforms, s);
   for (LightDesc& l : d.lights) {

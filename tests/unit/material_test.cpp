@@ -12,16 +12,15 @@ namespace {
 MaterialDesc solid(const Color& c, double diffuse, double ior = 1) {
   MaterialDesc m;
   m.pigment.color = {c, 0, 0};
-  m.finish.diffuse = diffuse;
-  m.interior.ior = ior;
+  m.finish.edit([&](FinishDesc& v) { v.diffuse = diffuse; });
+  m.interior.edit([&](InteriorDesc& v) { v.ior = ior; });
   return m;
 }
 
 TEST(MaterialTable, EqualFinishesShareOneSurface) {
   MaterialTable table;
   MaterialDesc a = solid({1, 0, 0}, 0.7), b = solid({0, 1, 0}, 0.7), c = solid({0, 0, 1}, 0.5);
-  a.finish.loc = {"a.xml", 3};
-  b.finish.loc = {"b.xml", 9};  // written elsewhere, equal all the same
+  b.finish = FinishDesc(*a.finish);  // equal, but not shared
   for (const MaterialDesc& m : {a, b, c, a}) table.add(m, Affine{});
   ASSERT_EQ(table.size(), 4u);
   EXPECT_EQ(table.surfaces().size(), 2u);
@@ -38,16 +37,16 @@ TEST(MaterialTable, SurfacesDifferingInOneFieldStayApart) {
   MaterialDesc base = solid({1, 1, 1}, 0.6);
   table.add(base, Affine{});
   MaterialDesc m = base;
-  m.finish.brilliance = 2;
+  m.finish.edit([&](FinishDesc& v) { v.brilliance = 2; });
   table.add(m, Affine{});
   m = base;
-  m.finish.reflection.exponent = 0.5;
+  m.finish.edit([&](FinishDesc& v) { v.reflection.exponent = 0.5; });
   table.add(m, Affine{});
   m = base;
-  m.interior.fadeDistance = 3;
+  m.interior.edit([&](InteriorDesc& v) { v.fadeDistance = 3; });
   table.add(m, Affine{});
   m = base;
-  m.finish.roughness = 0.01;
+  m.finish.edit([&](FinishDesc& v) { v.roughness = 0.01; });
   table.add(m, Affine{});
   EXPECT_EQ(table.surfaces().size(), 5u);
   EXPECT_DOUBLE_EQ(table.surface(table[4]).specularExponent, 100);
@@ -57,8 +56,8 @@ TEST(MaterialTable, DerivedFlags) {
   MaterialTable table;
   MaterialDesc glass = solid({1, 1, 1}, 0.1, 1.5);
   glass.pigment.color.filter = 0.9;
-  glass.finish.reflection.max = {0.1, 0.1, 0.1};
-  glass.finish.phong = 0.9;
+  glass.finish.edit([&](FinishDesc& v) { v.reflection.max = {0.1, 0.1, 0.1}; });
+  glass.finish.edit([&](FinishDesc& v) { v.phong = 0.9; });
   table.add(glass, Affine{});
   table.add(solid({1, 1, 1}, 0.6), Affine{});
   EXPECT_FALSE(table[0].opaque);
@@ -76,7 +75,7 @@ TEST(MaterialTable, DerivedFlags) {
 TEST(MaterialTable, CheckerPigment) {
   MaterialTable table;
   MaterialDesc m;
-  m.pigment.checker = CheckerDesc{{{1, 1, 1}, 0, 0}, {{0, 0, 0}, 0, 0.5}};
+  m.pigment.checker = std::make_shared<const CheckerDesc>(CheckerDesc{{{1, 1, 1}, 0, 0}, {{0, 0, 0}, 0, 0.5}});
   table.add(m, Affine::translate({0.5, 0, 0}));
   ASSERT_TRUE(table.anyChecker());
   const Material& mat = table[0];
@@ -96,9 +95,9 @@ TEST(MaterialTable, AddObjectsIsAddInTurn) {
   for (size_t i = 0; i < objects.size(); ++i) {
     MaterialDesc& m = objects[i].material;
     m = solid({0.1 * double(i % 7), 0.5, 1}, 0.1 * double(1 + (i * 7919) % 9), i % 13 == 0 ? 1.5 : 1);
-    if (i % 5 == 0) m.finish.phong = 0.5;
+    if (i % 5 == 0) m.finish.edit([](FinishDesc& f) { f.phong = 0.5; });
     if (i % 17 == 0) m.pigment.color.filter = 0.3;
-    if (i % 11 == 0) m.pigment.checker = CheckerDesc{{{1, 1, 1}, 0, 0}, {{0, 0, 0}, 0, i % 2 ? 0.5 : 0.0}};
+    if (i % 11 == 0) m.pigment.checker = std::make_shared<const CheckerDesc>(CheckerDesc{{{1, 1, 1}, 0, 0}, {{0, 0, 0}, 0, i % 2 ? 0.5 : 0.0}});
     if (i % 3 == 0) objects[i].transforms.steps.push_back({TransformStep::Kind::Translate, {double(i), 0, 1}, {}, {}});
   }
   MaterialTable one;

@@ -180,7 +180,7 @@ TEST(Render, TheSceneDoesNotDependOnTheBuildThreads) {
   auto insert = [&](size_t at, ShapeDesc shape, bool transformed = false) {
     ObjectDesc o;
     o.shape = std::move(shape);
-    o.material.finish.phong = double(at % 3) * 0.3;
+    o.material.finish.edit([&](FinishDesc& v) { v.phong = double(at % 3) * 0.3; });
     if (transformed) {  // turned about the origin, then moved to the camera
       o.transforms.steps.push_back({TransformStep::Kind::Rotate, {10, 20, 30}, {}, {}});
       o.transforms.steps.push_back({TransformStep::Kind::Translate, eye, {}, {}});

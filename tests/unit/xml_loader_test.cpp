@@ -233,7 +233,7 @@ TEST(XmlLoader, NamedMaterialWithEveryAttribute) {
   EXPECT_EQ(m.pigment.color.transmit, 0.125);
   EXPECT_FALSE(m.pigment.checker);
   EXPECT_EQ(m.pigment.loc.line, 3);
-  const FinishDesc& f = m.finish;
+  const FinishDesc& f = *m.finish;
   expectColor(f.ambient, 0.2, 0.3, 0.4);
   expectColor(f.emission, 0.5, 0.5, 0.5);
   EXPECT_EQ(f.diffuse, 0.9);
@@ -248,13 +248,11 @@ TEST(XmlLoader, NamedMaterialWithEveryAttribute) {
   expectColor(f.reflection.max, 0.1, 0.2, 0.3);
   EXPECT_EQ(f.reflection.falloff, 1);
   EXPECT_FALSE(f.reflection.fresnel);
-  EXPECT_EQ(f.loc.line, 4);
-  const InteriorDesc& in = m.interior;
+  const InteriorDesc& in = *m.interior;
   EXPECT_EQ(in.ior, 1.5);
   EXPECT_EQ(in.fadeDistance, 3);
   EXPECT_EQ(in.fadePower, 2);
   expectColor(in.fadeColor, 0.5, 0.6, 0.7);
-  EXPECT_EQ(in.loc.line, 7);
 }
 
 TEST(XmlLoader, EmptyMaterialPartsHaveDefaults) {
@@ -264,7 +262,7 @@ TEST(XmlLoader, EmptyMaterialPartsHaveDefaults) {
   EXPECT_EQ(m.pigment.color.filter, 0);
   EXPECT_EQ(m.pigment.color.transmit, 0);
   EXPECT_TRUE(m.pigment.transforms.empty());
-  const FinishDesc& f = m.finish;
+  const FinishDesc& f = *m.finish;
   expectColor(f.ambient, 0.1, 0.1, 0.1);
   expectColor(f.emission, 0, 0, 0);
   EXPECT_EQ(f.diffuse, 0.6);
@@ -280,17 +278,17 @@ TEST(XmlLoader, EmptyMaterialPartsHaveDefaults) {
   EXPECT_EQ(f.reflection.exponent, 1);
   EXPECT_EQ(f.reflection.metallic, 0);
   EXPECT_FALSE(f.reflection.fresnel);
-  EXPECT_EQ(m.interior.ior, 1);
-  EXPECT_EQ(m.interior.fadeDistance, 0);
-  EXPECT_EQ(m.interior.fadePower, 0);
-  expectColor(m.interior.fadeColor, 0, 0, 0);
+  EXPECT_EQ(m.interior->ior, 1);
+  EXPECT_EQ(m.interior->fadeDistance, 0);
+  EXPECT_EQ(m.interior->fadePower, 0);
+  expectColor(m.interior->fadeColor, 0, 0, 0);
 }
 
 TEST(XmlLoader, MaterialWithoutChildrenIsAllDefaults) {
   const SceneDesc s = load(inScene("<material name=\"plain\"/>"));
   ASSERT_EQ(s.materials.size(), 1u);
-  EXPECT_EQ(s.materials[0].finish.diffuse, 0.6);
-  EXPECT_EQ(s.materials[0].interior.ior, 1);
+  EXPECT_EQ(s.materials[0].finish->diffuse, 0.6);
+  EXPECT_EQ(s.materials[0].interior->ior, 1);
 }
 
 TEST(XmlLoader, CheckerPigmentWithTransforms) {
@@ -344,7 +342,7 @@ TEST(XmlLoader, ReflectionElementWithEveryAttribute) {
       "<sphere center=\"0 0 0\" radius=\"1\"><finish>"
       "<reflection min=\"0.1\" max=\"0.9 0.8 0.7\" falloff=\"2\" fresnel=\"true\" exponent=\"0.5\" metallic=\"0.25\"/>"
       "</finish></sphere>"));
-  const ReflectionDesc& r = s.objects.at(0).material.finish.reflection;
+  const ReflectionDesc& r = s.objects.at(0).material.finish->reflection;
   expectColor(r.min, 0.1, 0.1, 0.1);
   expectColor(r.max, 0.9, 0.8, 0.7);
   EXPECT_EQ(r.falloff, 2);
@@ -356,7 +354,7 @@ TEST(XmlLoader, ReflectionElementWithEveryAttribute) {
 TEST(XmlLoader, ReflectionElementMaxDefaultsToMin) {
   const SceneDesc s = load(inScene(
       "<sphere center=\"0 0 0\" radius=\"1\"><finish><reflection min=\"0.3 0.2 0.1\"/></finish></sphere>"));
-  const ReflectionDesc& r = s.objects.at(0).material.finish.reflection;
+  const ReflectionDesc& r = s.objects.at(0).material.finish->reflection;
   expectColor(r.min, 0.3, 0.2, 0.1);
   expectColor(r.max, 0.3, 0.2, 0.1);
   EXPECT_EQ(r.falloff, 1);
@@ -365,7 +363,7 @@ TEST(XmlLoader, ReflectionElementMaxDefaultsToMin) {
 
   const SceneDesc t = load(inScene(
       "<sphere center=\"0 0 0\" radius=\"1\"><finish><reflection max=\"0.5\"/></finish></sphere>"));
-  const ReflectionDesc& q = t.objects.at(0).material.finish.reflection;
+  const ReflectionDesc& q = t.objects.at(0).material.finish->reflection;
   expectColor(q.min, 0, 0, 0);
   expectColor(q.max, 0.5, 0.5, 0.5);
 }
@@ -389,13 +387,11 @@ TEST(XmlLoader, SphereWithInlineMaterialAndNoShadow) {
   EXPECT_EQ(o.namedMaterial, -1);
   EXPECT_EQ(o.material.name, "");
   expectColor(o.material.pigment.color.rgb, 1, 0, 0);
-  EXPECT_EQ(o.material.finish.phong, 1);
-  EXPECT_EQ(o.material.finish.diffuse, 0.6);
-  EXPECT_EQ(o.material.interior.ior, 1.33);
+  EXPECT_EQ(o.material.finish->phong, 1);
+  EXPECT_EQ(o.material.finish->diffuse, 0.6);
+  EXPECT_EQ(o.material.interior->ior, 1.33);
   EXPECT_EQ(o.loc.line, 2);
   EXPECT_EQ(o.material.pigment.loc.line, 3);
-  EXPECT_EQ(o.material.finish.loc.line, 4);
-  EXPECT_EQ(o.material.interior.loc.line, 5);
   EXPECT_STREQ(shapeName(o.shape), "sphere");
 }
 
@@ -405,8 +401,8 @@ TEST(XmlLoader, ObjectWithoutMaterialHasDefaultMaterial) {
   EXPECT_EQ(o.namedMaterial, -1);
   EXPECT_FALSE(o.noShadow);
   expectColor(o.material.pigment.color.rgb, 0, 0, 0);
-  EXPECT_EQ(o.material.finish.diffuse, 0.6);
-  EXPECT_EQ(o.material.interior.ior, 1);
+  EXPECT_EQ(o.material.finish->diffuse, 0.6);
+  EXPECT_EQ(o.material.interior->ior, 1);
   EXPECT_TRUE(o.transforms.empty());
 }
 
@@ -549,11 +545,11 @@ TEST(XmlLoader, SingleNumberForScaleAndColours) {
   expectColor(s.globals.ambientLight, 0.5, 0.5, 0.5);
   expectColor(s.lights.at(0).color, 2, 2, 2);
   const ObjectDesc& o = s.objects.at(0);
-  expectColor(o.material.finish.ambient, 0.2, 0.2, 0.2);
-  expectColor(o.material.finish.emission, 0.1, 0.1, 0.1);
-  expectColor(o.material.finish.reflection.min, 0.3, 0.3, 0.3);
-  expectColor(o.material.finish.reflection.max, 0.3, 0.3, 0.3);
-  expectColor(o.material.interior.fadeColor, 0.7, 0.7, 0.7);
+  expectColor(o.material.finish->ambient, 0.2, 0.2, 0.2);
+  expectColor(o.material.finish->emission, 0.1, 0.1, 0.1);
+  expectColor(o.material.finish->reflection.min, 0.3, 0.3, 0.3);
+  expectColor(o.material.finish->reflection.max, 0.3, 0.3, 0.3);
+  expectColor(o.material.interior->fadeColor, 0.7, 0.7, 0.7);
   ASSERT_EQ(o.transforms.steps.size(), 2u);
   expectVec(o.transforms.steps[0].v, 3, 3, 3);
   expectVec(o.transforms.steps[1].v, 1, 2, 3);
@@ -590,13 +586,13 @@ TEST(XmlLoader, NamedMaterialsAreCopiedIntoObjects) {
   EXPECT_EQ(a.namedMaterial, 1);
   EXPECT_EQ(a.material.name, "glass");
   EXPECT_EQ(a.material.pigment.color.filter, 0.9);
-  EXPECT_EQ(a.material.interior.ior, 1.5);
+  EXPECT_EQ(a.material.interior->ior, 1.5);
   EXPECT_EQ(a.material.loc.line, 3);  // where the material was defined
   const ObjectDesc& b = s.objects[1];
   EXPECT_EQ(b.namedMaterial, 0);
   EXPECT_EQ(b.material.name, "red");
   expectColor(b.material.pigment.color.rgb, 1, 0, 0);
-  EXPECT_EQ(b.material.finish.phong, 0.5);
+  EXPECT_EQ(b.material.finish->phong, 0.5);
   EXPECT_EQ(b.transforms.steps.size(), 1u);
   EXPECT_EQ(s.objects[2].namedMaterial, -1);
 }
@@ -1023,7 +1019,7 @@ std::string outcomeOf(const std::string& xml, size_t pieceBytes, int threads, si
       for (const TransformStep& step : t.steps) line(step.loc);
     };
     auto material = [&](const MaterialDesc& m) {
-      for (const SourceLoc& loc : {m.loc, m.pigment.loc, m.finish.loc, m.interior.loc}) line(loc);
+      for (const SourceLoc& loc : {m.loc, m.pigment.loc}) line(loc);
       transforms(m.pigment.transforms);
     };
     for (const SourceLoc& loc : {s.camera.loc, s.globals.loc, s.image ? s.image->loc : SourceLoc{}}) line(loc);

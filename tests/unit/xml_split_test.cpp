@@ -98,7 +98,7 @@ TEST(XmlSplit, GivesUpOnWhatItDoesNotExpect) {
 std::vector<int> linesOf(const SceneDesc& s) {
   std::vector<int> lines{s.camera.loc.line, s.globals.loc.line, s.image ? s.image->loc.line : 0};
   auto material = [&](const MaterialDesc& m) {
-    for (int line : {m.loc.line, m.pigment.loc.line, m.finish.loc.line, m.interior.loc.line}) lines.push_back(line);
+    for (int line : {m.loc.line, m.pigment.loc.line}) lines.push_back(line);
   };
   for (const LightDesc& l : s.lights) lines.push_back(l.loc.line);
   for (const MaterialDesc& m : s.materials) material(m);

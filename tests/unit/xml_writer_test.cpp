@@ -54,7 +54,7 @@ void same(const TransformList& a, const TransformList& b, const char* what) {
 void same(const MaterialDesc& a, const MaterialDesc& b) {
   EXPECT_EQ(a.name, b.name);
   const PigmentDesc &p = a.pigment, &q = b.pigment;
-  ASSERT_EQ(p.checker.has_value(), q.checker.has_value());
+  ASSERT_EQ(p.checker != nullptr, q.checker != nullptr);
   if (p.checker) {
     same(p.checker->color1, q.checker->color1, "checker color1");
     same(p.checker->color2, q.checker->color2, "checker color2");
@@ -62,7 +62,7 @@ void same(const MaterialDesc& a, const MaterialDesc& b) {
     same(p.color, q.color, "pigment");
   }
   same(p.transforms, q.transforms, "pigment transforms");
-  const FinishDesc &f = a.finish, &g = b.finish;
+  const FinishDesc &f = *a.finish, &g = *b.finish;
   same(f.ambient, g.ambient, "ambient");
   same(f.emission, g.emission, "emission");
   same(f.diffuse, g.diffuse, "diffuse");
@@ -79,10 +79,10 @@ void same(const MaterialDesc& a, const MaterialDesc& b) {
   EXPECT_EQ(f.reflection.fresnel, g.reflection.fresnel);
   same(f.reflection.exponent, g.reflection.exponent, "reflection exponent");
   same(f.reflection.metallic, g.reflection.metallic, "reflection metallic");
-  same(a.interior.ior, b.interior.ior, "ior");
-  same(a.interior.fadeDistance, b.interior.fadeDistance, "interior fade_distance");
-  same(a.interior.fadePower, b.interior.fadePower, "interior fade_power");
-  same(a.interior.fadeColor, b.interior.fadeColor, "fade_color");
+  same(a.interior->ior, b.interior->ior, "ior");
+  same(a.interior->fadeDistance, b.interior->fadeDistance, "interior fade_distance");
+  same(a.interior->fadePower, b.interior->fadePower, "interior fade_power");
+  same(a.interior->fadeColor, b.interior->fadeColor, "fade_color");
 }
 
 void same(const TriangleDesc& a, const TriangleDesc& b) {
@@ -319,7 +319,7 @@ TEST(XmlWriter, EveryFeatureRoundTripsTextAndValues) {
   EXPECT_EQ(second.objects[3].namedMaterial, 1);
   EXPECT_EQ(second.objects[5].namedMaterial, 2);
   EXPECT_EQ(second.objects[3].material.name, "fancy_2");
-  EXPECT_TRUE(second.objects[3].material.finish.reflection.fresnel);
+  EXPECT_TRUE(second.objects[3].material.finish->reflection.fresnel);
   EXPECT_EQ(second.materials[0].pigment.transforms.steps.size(), 3u);
   EXPECT_EQ(std::get<MeshDesc>(second.objects[12].shape).triangles.size(), 2u);
   EXPECT_EQ(std::get<MeshDesc>(second.objects[12].shape).smoothTriangles.size(), 1u);
@@ -346,7 +346,7 @@ TEST(XmlWriter, NumbersSurviveBitForBit) {
   ObjectDesc o;
   o.shape = SphereDesc{{third, -third, 9.999999999999999e14}, third};
   o.material.pigment.color = {{0.1, 0.7, 0.9999999999999999}, third, tiny};
-  o.material.finish.diffuse = 0.1 * 3;
+  o.material.finish.edit([&](FinishDesc& v) { v.diffuse = 0.1 * 3; });
   TransformStep t{};
   t.kind = TransformStep::Kind::Translate;
   t.v = {0.1, third, -tiny};
