@@ -130,9 +130,9 @@ class Writer {
   void materialBody(const MaterialDesc& m, const std::string& indent) {
     out_ += indent + "texture {\n";
     pigment(m.pigment, indent + "  ");
-    finish(m.finish, indent + "  ");
+    finish(*m.finish, indent + "  ");
     out_ += indent + "}\n";
-    interior(m.interior, indent);
+    interior(*m.interior, indent);
   }
 
   void triangle(const TriangleDesc& t, const std::string& indent) {
