@@ -165,7 +165,8 @@ class Writer {
       void operator()(const TriangleDesc& t) {
         w.out_ += "triangle { " + vec(t.p1) + ", " + vec(t.p2) + ", " + vec(t.p3) + "\n";
       }
-      void operator()(const SmoothTriangleDesc& t) {
+      void operator()(const SmoothTriangleRef& r) {
+        const SmoothTriangleDesc& t = *r;
         w.out_ += "smooth_triangle { " + vec(t.p1) + ", " + vec(t.n1) + ", " + vec(t.p2) + ", " + vec(t.n2) + ", " +
                   vec(t.p3) + ", " + vec(t.n3) + "\n";
       }

@@ -85,7 +85,7 @@ class PrimitiveBuilder {
         !identity_);
   }
   void operator()(const TriangleDesc& t) { triangle(t, false); }
-  void operator()(const SmoothTriangleDesc& t) { smooth(t, false); }
+  void operator()(const SmoothTriangleRef& t) { smooth(*t, false); }
   void operator()(const MeshDesc& m) {
     for (const auto& t : m.triangles) triangle(t, true);
     for (const auto& t : m.smoothTriangles) smooth(t, true);
@@ -149,7 +149,7 @@ class PrimitiveBuilder {
 // smooth_triangle (none).
 size_t primitiveCount(const ObjectDesc& o) {
   if (const MeshDesc* mesh = std::get_if<MeshDesc>(&o.shape)) return mesh->triangles.size() + mesh->smoothTriangles.size();
-  if (!std::holds_alternative<SmoothTriangleDesc>(o.shape)) return 1;
+  if (!std::holds_alternative<SmoothTriangleRef>(o.shape)) return 1;
   PrimitiveSink count;
   std::visit(PrimitiveBuilder(count, 0, o.noShadow, o.transforms.combined()), o.shape);
   return count.made;

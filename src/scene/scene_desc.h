@@ -171,8 +171,11 @@ struct MeshDesc {
   std::vector<SmoothTriangleDesc> smoothTriangles;
 };
 
+// A lone smooth triangle is held apart (shared, core/shared_value.h): at 160 bytes it would
+// make every object's shape, spheres included, that big (a million spheres: 69 MiB more).
+using SmoothTriangleRef = SharedValue<SmoothTriangleDesc>;
 using ShapeDesc = std::variant<SphereDesc, PlaneDesc, BoxDesc, CylinderDesc, ConeDesc, DiscDesc,
-                               TriangleDesc, SmoothTriangleDesc, MeshDesc>;
+                               TriangleDesc, SmoothTriangleRef, MeshDesc>;
 
 const char* shapeName(const ShapeDesc& shape);
 

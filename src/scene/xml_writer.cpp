@@ -201,7 +201,7 @@ class Writer {
         if (d.holeRadius != 0) a += " hole_radius=\"" + num(d.holeRadius) + "\"";
       }
       void operator()(const TriangleDesc& d) { a += tri(d); }
-      void operator()(const SmoothTriangleDesc& d) { a += smooth(d); }
+      void operator()(const SmoothTriangleRef& d) { a += smooth(*d); }
       void operator()(const MeshDesc& m) {
         for (const auto& t : m.triangles) body += "    <triangle" + tri(t) + "/>\n";
         for (const auto& t : m.smoothTriangles) body += "    <smooth_triangle" + smooth(t) + "/>\n";

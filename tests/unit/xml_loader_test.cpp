@@ -474,7 +474,7 @@ TEST(XmlLoader, TriangleAndSmoothTriangle) {
   expectVec(t.p2, 1, 0, 0);
   expectVec(t.p3, 0, 1, 0);
   EXPECT_EQ(t.loc.line, 2);
-  const auto& st = std::get<SmoothTriangleDesc>(s.objects.at(1).shape);
+  const SmoothTriangleDesc& st = *std::get<SmoothTriangleRef>(s.objects.at(1).shape);
   expectVec(st.n1, 0, 0, -1);
   expectVec(st.p2, 1, 0, 0);
   expectVec(st.n2, 0, 0.5, -1);

@@ -134,8 +134,8 @@ void same(const ShapeDesc& a, const ShapeDesc& b) {
     same(s->holeRadius, t.holeRadius, "hole_radius");
   } else if (const auto* s = std::get_if<TriangleDesc>(&a)) {
     same(*s, std::get<TriangleDesc>(b));
-  } else if (const auto* s = std::get_if<SmoothTriangleDesc>(&a)) {
-    same(*s, std::get<SmoothTriangleDesc>(b));
+  } else if (const auto* s = std::get_if<SmoothTriangleRef>(&a)) {
+    same(**s, *std::get<SmoothTriangleRef>(b));
   } else {
     const auto& m = std::get<MeshDesc>(a);
     const auto& n = std::get<MeshDesc>(b);
