@@ -6,11 +6,8 @@ the memory model. Writes OUT/report.md, a PNG per figure and a CSV of every run 
     bench/paper.sh [--full | --quick] [--out DIR] [--pvrt build/pvrt] [--max-p N]
 """
 import argparse
-import csv
 import os
 import re
-import statistics
-import subprocess
 import sys
 import time
 

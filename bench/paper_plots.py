@@ -1,6 +1,5 @@
 """The report's figures (matplotlib, Agg) and the small tables they share with the Markdown."""
 import os
-import statistics
 
 import numpy as np
 

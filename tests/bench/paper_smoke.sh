@@ -51,6 +51,9 @@ ranks = {int(r["ranks"]) for r in sim}
 if max(ranks) < 64 or {"block", "cyclic", "tiles", "dynamic"} - {r["strategy"] for r in sim}:
     sys.exit("FAIL: the simulator lacks a strategy or P = 64")
 finite("simulator_check.csv", ["simulated_s", "measured_s"], 4)
+for r in csv.DictReader(open(f"{out}/simulator_check.csv")):
+    if not math.isfinite(float(r["error_ceiling"])):
+        sys.exit(f"FAIL: simulator check {r}")
 finite("memory_model.csv", ["paper_b", "measured_total_b"], 2)
 print("model rows", len(model), "simulator rows", len(sim))
 PY
