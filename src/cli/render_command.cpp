@@ -374,7 +374,9 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("-H,--height", o->height, "Image height (default: the scene's <image>, else 240)")
       ->check(CLI::Range(1, 65536));
   CLI::Option* spp =
-      c->add_option("--spp", o->spp, "Samples per pixel c, a perfect square; pov adds the centre ray (c=1: one ray)")
+      c->add_option("--spp", o->spp,
+                    "Samples per pixel c: any c for jitter, a perfect square for pov and grid; pov adds the centre "
+                    "ray (c=1: one ray)")
           ->check(CLI::Range(1, 1 << 16));
   CLI::Option* aa = c->add_option("--aa-depth", o->aaDepth, "POV-Ray's +R n: sets --spp to n*n")->check(CLI::Range(1, 9));
   CLI::Option* budget =

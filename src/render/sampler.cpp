@@ -25,22 +25,33 @@ int perfectSquareRoot(int c) {
   return n * n == c ? n : -1;
 }
 
+int stratumRows(int c) {
+  int rows = 1;
+  for (int d = 1; int64_t(d) * d <= c; ++d)
+    if (c % d == 0) rows = d;
+  return rows;
+}
+
 PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
-  n_ = perfectSquareRoot(settings.samplesPerPixel);
-  if (n_ < 1)
-    throw Error(ExitCode::Usage, "--spp must be a perfect square (1, 4, 9, 16, ...), got " +
-                                     std::to_string(settings.samplesPerPixel));
-  if (s_.kind == SamplerKind::Pov) {
-    fixed_.push_back({0, 0});
-    if (n_ > 1 || settings.samplesPerPixel > 1)
-      for (int j = 0; j < n_; ++j)
-        for (int i = 0; i < n_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / n_, -0.5 + (j + 0.5) / n_});
-    count_ = int(fixed_.size());
+  const int c = settings.samplesPerPixel;
+  if (c < 1) throw Error(ExitCode::Usage, "--spp must be a positive whole number, got " + std::to_string(c));
+  if (s_.kind == SamplerKind::Jitter) {
+    // Strata of any shape: the paper's c is any whole number (its figures use c = 8).
+    rows_ = stratumRows(c);
+    cols_ = c / rows_;
   } else {
-    for (int j = 0; j < n_; ++j)
-      for (int i = 0; i < n_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / n_, -0.5 + (j + 0.5) / n_});
-    count_ = n_ * n_;
+    // POV-Ray's +Rn grid is square, and so is ours: other c have no such pattern.
+    rows_ = cols_ = perfectSquareRoot(c);
+    if (rows_ < 1)
+      throw Error(ExitCode::Usage, std::string("--spp must be a perfect square (1, 4, 9, 16, ...) for --sampler ") +
+                                       samplerName(s_.kind) + ", got " + std::to_string(c) +
+                                       " (--sampler jitter takes any c)");
   }
+  if (s_.kind == SamplerKind::Pov) fixed_.push_back({0, 0});
+  if (s_.kind != SamplerKind::Pov || c > 1)
+    for (int j = 0; j < rows_; ++j)
+      for (int i = 0; i < cols_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / cols_, -0.5 + (j + 0.5) / rows_});
+  count_ = int(fixed_.size());
 }
 
 void PixelSampler::offsets(int x, int y, std::vector<SubSample>& out) const {
@@ -49,8 +60,8 @@ void PixelSampler::offsets(int x, int y, std::vector<SubSample>& out) const {
   const uint64_t pixel = mix(s_.seed ^ mix((uint64_t(uint32_t(y)) << 32) | uint32_t(x)));
   for (int k = 0; k < count_; ++k) {
     const uint64_t h = mix(pixel + uint64_t(k));
-    out[k].dx += (unitFloat(h) - 0.5) / n_;
-    out[k].dy += (unitFloat(mix(h)) - 0.5) / n_;
+    out[k].dx += (unitFloat(h) - 0.5) / cols_;
+    out[k].dy += (unitFloat(mix(h)) - 0.5) / rows_;
   }
 }
 

@@ -3,8 +3,10 @@
 //   pov:    POV-Ray's +A0.0 +AM1 +Rn -J: the centre ray plus an n x n grid at offsets
 //           -1/2 + (k+1/2)/n, all n*n+1 rays weighted equally. c = n*n; c = 1 is -A.
 //   grid:   an n x n grid at cell centres, equal weights (c = n*n).
-//   jitter: one random point in each cell of an n x n grid, seeded from
-//           (pixel, sample, seed) so the image never depends on the thread.
+//   jitter: one random point in each cell of an n x m grid (n rows, m columns, n*m = c,
+//           n the largest divisor of c not above sqrt(c): any c >= 1, and n x n when c
+//           is a square), seeded from (pixel, sample, seed) so the image never depends
+//           on the thread.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +19,7 @@ enum class SamplerKind { Pov, Grid, Jitter };
 
 struct SamplerSettings {
   SamplerKind kind = SamplerKind::Pov;
-  int samplesPerPixel = 1;  // c; must be a perfect square
+  int samplesPerPixel = 1;  // c; a perfect square for pov and grid, any c >= 1 for jitter
   uint64_t seed = 0;        // jitter only
 };
 
@@ -33,11 +35,10 @@ class PixelSampler {
   // that order and divided by count() — the same arithmetic on every backend.
   void offsets(int x, int y, std::vector<SubSample>& out) const;
   int count() const { return count_; }
-  int gridSide() const { return n_; }
 
  private:
   SamplerSettings s_;
-  int n_ = 1;
+  int rows_ = 1, cols_ = 1;  // the strata: rows_ x cols_ cells
   int count_ = 1;
   std::vector<SubSample> fixed_;
 };
@@ -46,5 +47,8 @@ SamplerKind parseSamplerKind(const std::string& name);  // throws pvrt::Error(Us
 const char* samplerName(SamplerKind kind);
 // Exact integer square root, or -1 when c is not a perfect square.
 int perfectSquareRoot(int c);
+// The rows of the jitter sampler's strata for c samples: the largest divisor of c that is at
+// most sqrt(c) (so c / rows >= rows columns; 1 for a prime c).
+int stratumRows(int c);
 
 }  // namespace pvrt

@@ -3,3 +3,9 @@
 add_test(NAME bench.quick
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/bench/bench_smoke.sh $<TARGET_FILE:pvrt> ${CMAKE_CURRENT_BINARY_DIR}/bench-quick)
 set_tests_properties(bench.quick PROPERTIES LABELS bench TIMEOUT 600)
+
+# The paper's experiments (bench/paper.sh) at tiny sizes: every figure, CSV and the report are written and the
+# model's and the simulator's predictions are finite numbers. No timing is asserted.
+add_test(NAME experiments.paper.quick
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/bench/paper_smoke.sh $<TARGET_FILE:pvrt> ${CMAKE_CURRENT_BINARY_DIR}/paper-quick)
+set_tests_properties(experiments.paper.quick PROPERTIES LABELS experiments TIMEOUT 900 RUN_SERIAL TRUE)

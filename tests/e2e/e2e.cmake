@@ -152,3 +152,8 @@ pvrt_expect_error(time_budget_negative 2 "--time-budget must be a positive numbe
   ARGS render ${PVRT_PAPER1} --time-budget -1)
 pvrt_expect_error(time_budget_with_spp 2 "excludes"
   ARGS render ${PVRT_PAPER1} --time-budget 1 --spp 4)
+
+# Any c with the jitter sampler: the same bits on every backend and schedule; grid and pov keep squares.
+add_test(NAME e2e.jitter_any_c
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/jitter_any_c.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/jitter-any-c)
+set_tests_properties(e2e.jitter_any_c PROPERTIES LABELS e2e TIMEOUT 300)

@@ -54,14 +54,116 @@ TEST(Sampler, JitterStaysInItsStratumAndDependsOnlyOnPixelAndSeed) {
   EXPECT_NE(a[0].dx, c[0].dx);
 }
 
-TEST(Sampler, NonSquareSppIsAUsageError) {
-  try {
-    PixelSampler s({SamplerKind::Grid, 5, 0});
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), ExitCode::Usage);
-    EXPECT_STREQ(e.what(), "--spp must be a perfect square (1, 4, 9, 16, ...), got 5");
+TEST(Sampler, NonSquareSppIsAUsageErrorForGridAndPov) {
+  for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Pov}) {
+    try {
+      PixelSampler s({kind, 5, 0});
+      FAIL() << "expected an error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::Usage);
+      EXPECT_EQ(std::string(e.what()), std::string("--spp must be a perfect square (1, 4, 9, 16, ...) for --sampler ") +
+                                           samplerName(kind) + ", got 5 (--sampler jitter takes any c)");
+    }
   }
+}
+
+TEST(Sampler, ZeroOrNegativeSppIsAUsageErrorForEverySampler) {
+  for (SamplerKind kind : {SamplerKind::Grid, SamplerKind::Pov, SamplerKind::Jitter})
+    for (int c : {0, -4}) {
+      try {
+        PixelSampler s({kind, c, 0});
+        FAIL() << "expected an error for c = " << c;
+      } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ExitCode::Usage);
+        EXPECT_EQ(std::string(e.what()), "--spp must be a positive whole number, got " + std::to_string(c));
+      }
+    }
+}
+
+TEST(Sampler, StratumRowsIsTheLargestDivisorNotAboveTheRoot) {
+  EXPECT_EQ(stratumRows(1), 1);
+  EXPECT_EQ(stratumRows(2), 1);
+  EXPECT_EQ(stratumRows(7), 1);
+  EXPECT_EQ(stratumRows(8), 2);
+  EXPECT_EQ(stratumRows(12), 3);
+  EXPECT_EQ(stratumRows(16), 4);
+  EXPECT_EQ(stratumRows(24), 4);
+  EXPECT_EQ(stratumRows(256), 16);
+  EXPECT_EQ(stratumRows(1 << 16), 256);
+  EXPECT_EQ(stratumRows(65521), 1);  // the largest prime below 2^16
+}
+
+// Every c from 1 to 300: exactly c samples, one in each cell of the rows x cols strata
+// (each cell hit once), the same offsets on every call, different ones for another pixel.
+TEST(Sampler, JitterTakesAnyCAndFillsEveryStratumOnce) {
+  std::vector<SubSample> a, b, other;
+  for (int c = 1; c <= 300; ++c) {
+    PixelSampler s({SamplerKind::Jitter, c, 11});
+    ASSERT_EQ(s.count(), c);
+    s.offsets(17, 3, a);
+    s.offsets(17, 3, b);
+    s.offsets(18, 3, other);
+    ASSERT_EQ(a.size(), size_t(c));
+    const int rows = stratumRows(c), cols = c / rows;
+    ASSERT_EQ(rows * cols, c);
+    std::vector<int> hits(size_t(c), 0);
+    for (int k = 0; k < c; ++k) {
+      EXPECT_EQ(a[k].dx, b[k].dx);
+      EXPECT_EQ(a[k].dy, b[k].dy);
+      ASSERT_GE(a[k].dx, -0.5);
+      ASSERT_LT(a[k].dx, 0.5);
+      ASSERT_GE(a[k].dy, -0.5);
+      ASSERT_LT(a[k].dy, 0.5);
+      const int i = int((a[k].dx + 0.5) * cols), j = int((a[k].dy + 0.5) * rows);
+      EXPECT_EQ(j * cols + i, k) << "c=" << c << " sample " << k << " left its stratum";
+      ++hits[size_t(j * cols + i)];
+    }
+    for (int h : hits) EXPECT_EQ(h, 1) << "c=" << c;
+    if (c > 1) EXPECT_NE(a[0].dx, other[0].dx) << "c=" << c;
+  }
+}
+
+// c = 8 (the paper's figures): 2 rows of 4 columns; the mean offset of a stratified set is
+// near the pixel centre over many pixels, as it must be for an unbiased estimate.
+TEST(Sampler, JitterEightIsTwoRowsOfFourAndCentredOnAverage) {
+  PixelSampler s({SamplerKind::Jitter, 8, 3});
+  std::vector<SubSample> o;
+  double sx = 0, sy = 0;
+  int n = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      s.offsets(x, y, o);
+      for (int k = 0; k < 8; ++k) {
+        EXPECT_EQ(int((o[k].dx + 0.5) * 4), k % 4);
+        EXPECT_EQ(int((o[k].dy + 0.5) * 2), k / 4);
+        sx += o[k].dx;
+        sy += o[k].dy;
+        ++n;
+      }
+    }
+  EXPECT_NEAR(sx / n, 0.0, 0.01);
+  EXPECT_NEAR(sy / n, 0.0, 0.01);
+}
+
+// Squares keep the n x n strata and the very same offsets as before any c was allowed
+// (images rendered with --sampler jitter at square c do not change). The pinned values are
+// what the square-only sampler (commit 9fa70c3) gave for pixel (5, 9), seed 7, c = 16.
+TEST(Sampler, JitterAtASquareKeepsItsSquareStrata) {
+  PixelSampler s16({SamplerKind::Jitter, 16, 7});
+  EXPECT_EQ(stratumRows(16), 4);
+  std::vector<SubSample> o;
+  s16.offsets(5, 9, o);
+  ASSERT_EQ(o.size(), 16u);
+  for (int k = 0; k < 16; ++k) {
+    EXPECT_EQ(int((o[k].dx + 0.5) * 4), k % 4);
+    EXPECT_EQ(int((o[k].dy + 0.5) * 4), k / 4);
+  }
+  EXPECT_EQ(o[0].dx, -0x1.062eddb4edf45p-2);
+  EXPECT_EQ(o[0].dy, -0x1.94cf151054932p-2);
+  EXPECT_EQ(o[5].dx, -0x1.21d1742f8236ep-3);
+  EXPECT_EQ(o[5].dy, -0x1.fd00b00cd150ap-3);
+  EXPECT_EQ(o[15].dx, 0x1.802d4f5aed0c6p-2);
+  EXPECT_EQ(o[15].dy, 0x1.fa8a707d2f27ap-2);
 }
 
 TEST(Sampler, ParsesNames) {
