@@ -111,11 +111,14 @@ slow)
   ;;
 loadmap)
   np=$1 schedule=$2
-  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial --load-map "$work/serial" "${size[@]}" || exit 1
+  # (The maps had the images' names before, `--load-map serial` beside `-o serial.png`: the map's
+  # PNG silently replaced the render. Two outputs on one file are now refused.)
+  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial --load-map "$work/serial-map" "${size[@]}" || exit 1
   "${mpirun[@]}" -np "$np" "$pvrt" render "$scene" -o "$work/mpi.png" --backend mpi --schedule "$schedule" \
-    --threads 2 --load-map "$work/mpi" "${size[@]}" || exit 1
+    --threads 2 --load-map "$work/mpi-map" "${size[@]}" || exit 1
   "$pvrt" compare "$work/serial.png" "$work/mpi.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
-  idiff -fail 0 -warn 0 "$work/serial.exr" "$work/mpi.exr"
+  "$pvrt" compare "$work/serial-map.png" "$work/mpi-map.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
+  idiff -fail 0 -warn 0 "$work/serial-map.exr" "$work/mpi-map.exr"
   ;;
 defaults)
   np=$1
