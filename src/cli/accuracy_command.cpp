@@ -7,12 +7,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include <fmt/core.h>
 
 #include "cli/commands.h"
-#include "core/atomic_file.h"
+#include "core/output_files.h"
 #include "core/error.h"
 #include "image/image_io.h"
 #include "render/accuracy.h"
@@ -156,13 +157,15 @@ std::string findPython() {
   throw Error(ExitCode::OutputError, "cannot plot: no python3 with matplotlib (tools/install-deps.sh installs it)");
 }
 
-void plot(const std::string& csvPath, const std::string& pngPath, const std::string& title) {
+// Runs the plot script on `csvPath`, drawing into `pngPath`; errors name `name`, the --plot path.
+void plot(const std::string& python, const std::string& csvPath, const std::string& pngPath, const std::string& name,
+          const std::string& title) {
   const char* env = std::getenv("PVRT_PLOT_ACCURACY");
   const std::string script = env && *env ? env : std::string(PVRT_TOOLS_DIR) + "/plot_accuracy.py";
-  const std::string cmd = fmt::format("{} {} {} {} --title {}", findPython(), shellQuote(script), shellQuote(csvPath),
+  const std::string cmd = fmt::format("{} {} {} {} --title {}", python, shellQuote(script), shellQuote(csvPath),
                                       shellQuote(pngPath), shellQuote(title));
   if (std::system(cmd.c_str()) != 0)
-    throw Error(ExitCode::OutputError, "cannot write \"" + pngPath + "\": the plot script failed");
+    throw Error(ExitCode::OutputError, "cannot write \"" + printableName(name) + "\": the plot script failed");
 }
 
 int runAccuracy(const AccuracyOptions& o) {
@@ -179,7 +182,14 @@ int runAccuracy(const AccuracyOptions& o) {
   const SamplerSettings depthSampler = sampler(o.depthSampler, o.depthSpp);
   sampler(o.qualitySampler, 1);
   if (!o.plot.empty() && std::filesystem::path(o.plot).extension() != ".png")
-    throw Error(ExitCode::Usage, "--plot must name a .png file, got \"" + o.plot + "\"");
+    throw Error(ExitCode::Usage, "--plot must name a .png file, got \"" + printableName(o.plot) + "\"");
+  // The outputs, and the python that draws the plot, are checked before the renders.
+  OutputFiles out;
+  out.input(o.scene);
+  if (!o.golden.empty()) out.input(o.golden);
+  if (!o.csv.empty()) out.output(o.csv, "--csv");
+  if (!o.plot.empty()) out.output(o.plot, "--plot");
+  const std::string python = o.plot.empty() ? std::string() : findPython();
 
   Setup su;
   su.desc = loadSceneFile(o.scene);
@@ -235,21 +245,18 @@ int runAccuracy(const AccuracyOptions& o) {
   }
 
   const std::string csv = csvText(rows);
-  if (!o.csv.empty()) writeFileAtomically(o.csv, csv);
+  if (!o.csv.empty()) out.stageBytes(o.csv, csv);
   if (!o.plot.empty()) {
-    std::string csvPath = o.csv;
-    if (csvPath.empty()) {  // the plot script reads a CSV: a private temporary one
-      csvPath = (std::filesystem::temp_directory_path() / fmt::format("pvrt-accuracy-{}.csv", getpid())).string();
-      writeFileAtomically(csvPath, csv);
-    }
-    try {
-      plot(csvPath, o.plot, std::filesystem::path(o.scene).filename().string());
-    } catch (...) {
-      if (o.csv.empty()) std::filesystem::remove(csvPath);
-      throw;
-    }
-    if (o.csv.empty()) std::filesystem::remove(csvPath);
+    // The plot script reads the CSV from a private temporary and draws into the staged PNG.
+    const std::string data =
+        createTemporaryFile(std::filesystem::temp_directory_path().string(), "pvrt-accuracy", ".csv", o.plot);
+    const std::unique_ptr<const char, void (*)(const char*)> remove(data.c_str(), [](const char* f) { ::unlink(f); });
+    std::FILE* f = std::fopen(data.c_str(), "wb");
+    const bool ok = f && std::fwrite(csv.data(), 1, csv.size(), f) == csv.size();
+    if (!f || std::fclose(f) != 0 || !ok) throw Error(ExitCode::OutputError, "cannot write the plot's data: " + data);
+    plot(python, data, out.stage(o.plot), o.plot, std::filesystem::path(o.scene).filename().string());
   }
+  out.commit();
   return 0;
 }
 

@@ -3,6 +3,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/output_files.h"
 #include "image/compare.h"
 
 namespace pvrt::cli {
@@ -16,6 +17,11 @@ struct CompareOptions {
 };
 
 int runCompare(const CompareOptions& o) {
+  // The difference image's path is checked before the images are read.
+  OutputFiles out;
+  out.input(o.a);
+  out.input(o.b);
+  if (!o.diff.empty()) out.output(o.diff, "--diff");
   CompareResult r;
   try {
     r = compareFiles(o.a, o.b);
@@ -35,7 +41,10 @@ int runCompare(const CompareOptions& o) {
   fmt::print("  Max error = {} levels @ ({}, {}, {})\n", r.maxError, r.maxX, r.maxY, channel[r.maxChannel % 3]);
   fmt::print("  {} channels: {} differ, {} by more than 1 level ({:.4f}%), {} by more than 2\n", r.channels, r.over0,
              r.over1, 100.0 * double(r.over1) / double(r.channels), r.over2);
-  if (!o.diff.empty()) writeDifferenceImage(o.a, o.b, o.diff, o.diffScale);
+  if (!o.diff.empty()) {
+    writeDifferenceImage(o.a, o.b, out.stage(o.diff, ".png"), o.diffScale);
+    out.commit();
+  }
   if (r.over0 == 0) {
     fmt::print("PASS (identical)\n");
     return int(CompareExit::Match);

@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
-#include "core/atomic_file.h"
+#include "core/output_files.h"
 #include "core/error.h"
 #include "pov_export.h"
 #include "scene/xml_loader.h"
@@ -17,12 +17,16 @@ struct ExportOptions {
 };
 
 int runExport(const ExportOptions& o) {
+  OutputFiles out;  // checked before the scene is read
+  out.input(o.scene);
+  out.output(o.output, "-o");
   const SceneDesc desc = loadSceneFile(o.scene);
   const PovExport e = exportPov(desc);
   for (const std::string& w : e.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   if (o.strict && !e.warnings.empty())
     throw Error(ExitCode::SceneError, e.warnings.front() + " (--strict)");
-  writeFileAtomically(o.output, e.sdl);
+  out.stageBytes(o.output, e.sdl);
+  out.commit();
   return 0;
 }
 

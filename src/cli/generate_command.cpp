@@ -1,10 +1,13 @@
 // `pvrt generate`: the paper's random scenes of spheres and point lights, from a seed.
+#include <cmath>
+
 #include <fmt/core.h>
 
 #include "cli/commands.h"
-#include "core/atomic_file.h"
+#include "core/output_files.h"
 #include "core/error.h"
 #include "generate/random_scene.h"
+#include "scene/xml_attributes.h"
 #include "scene/xml_writer.h"
 
 namespace pvrt::cli {
@@ -19,10 +22,21 @@ struct GenerateCliOptions {
   bool noFloor = false;
 };
 
+// Every number the generator writes must be one its own loader reads (scene/xml_attributes.h):
+// finite and at most 1e15 in magnitude. Refused here, before anything is written.
+void checkNumbers(const char* option, const std::vector<double>& values) {
+  for (double v : values)
+    if (!std::isfinite(v) || std::fabs(v) > kMaxSceneNumber)
+      throw Error(ExitCode::Usage, fmt::format("{} {} is out of range (a finite number of at most 1e15 in magnitude, "
+                                               "as scenes allow)", option, v));
+}
+
 Vec3 lo(const std::vector<double>& b) { return {b[0], b[1], b[2]}; }
 Vec3 hi(const std::vector<double>& b) { return {b[3], b[4], b[5]}; }
 
 int runGenerate(GenerateCliOptions o) {
+  OutputFiles out;  // checked before the scene is made
+  out.output(o.output, "-o");
   GenerateOptions g = o.g;
   if (o.preset == "paper1") g = paperScene1();
   if (o.preset == "paper2") g = paperScene2();
@@ -37,10 +51,19 @@ int runGenerate(GenerateCliOptions o) {
   if (!o.lightBox.empty()) { g.lightBoxLo = lo(o.lightBox); g.lightBoxHi = hi(o.lightBox); }
   if (!o.palette.empty()) g.palette = {o.palette[0], o.palette[1], o.palette[2], o.palette[3]};
   if (o.noFloor) g.floor = false;
+  checkNumbers("--sphere-box", o.sphereBox);
+  checkNumbers("--light-box", o.lightBox);
+  checkNumbers("--radius-min", {g.radiusMin});
+  checkNumbers("--radius-max", {g.radiusMax});
+  checkNumbers("--palette", o.palette);
   for (int axis = 0; axis < 3; ++axis)
     if (g.sphereBoxLo[axis] > g.sphereBoxHi[axis] || g.lightBoxLo[axis] > g.lightBoxHi[axis])
       throw Error(ExitCode::Usage, "a box's low corner must not exceed its high corner");
-  writeFileAtomically(o.output, sceneToXml(generateScene(g)));
+  const Palette& w = g.palette;
+  if (!(w.matte >= 0 && w.shiny >= 0 && w.mirror >= 0 && w.glass >= 0 && w.matte + w.shiny + w.mirror + w.glass > 0))
+    throw Error(ExitCode::Usage, "--palette weights must not be negative, and not all zero");
+  out.stageBytes(o.output, sceneToXml(generateScene(g)));
+  out.commit();
   return 0;
 }
 

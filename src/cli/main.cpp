@@ -1,13 +1,23 @@
 // pvrt: render XML scenes the way POV-Ray 3.7 renders them. A thin layer over the
 // library: parse the command line, run one subcommand, map errors to exit codes.
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "cli/commands.h"
 #include "cli/huge_pages.h"
 #include "core/error.h"
+#include "parallel/threads.h"
 
 int main(int argc, char** argv) {
+  // Checked as --threads is, before anything starts threads: libgomp would try to start every
+  // thread asked for (OMP_NUM_THREADS=100000 aborted inside it). Values libgomp itself finds
+  // invalid ("0", "abc") also get its own warning, printed before main().
+  if (pvrt::threadsFromEnvironment() < 0) {
+    std::fprintf(stderr, "pvrt: error: OMP_NUM_THREADS=\"%s\" is not a number of threads from 1 to %d (as --threads)\n",
+                 pvrt::printableName(std::getenv("OMP_NUM_THREADS")).c_str(), pvrt::kMaxThreads);
+    return int(pvrt::ExitCode::Usage);
+  }
   pvrt::cli::restartWithHugePages(argv);
   CLI::App app{"pvrt: a parallel ray tracer whose pictures match POV-Ray 3.7"};
   app.require_subcommand(1);

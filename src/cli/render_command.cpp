@@ -6,6 +6,7 @@
 #include <csignal>
 #include <chrono>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,7 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "core/atomic_file.h"
+#include "core/output_files.h"
 #include "core/error.h"
 #include "image/image_io.h"
 #include "parallel/cluster.h"
@@ -38,7 +39,10 @@ namespace {
 // written then leaves its temporary file, as SIGKILL does).
 std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) {
-  if (gInterrupted.exchange(true)) _exit(int(ExitCode::Interrupted));
+  if (gInterrupted.exchange(true)) {
+    removeStagedFilesNow();  // no temporary is left behind, even by the second signal
+    _exit(int(ExitCode::Interrupted));
+  }
 }
 void catchInterrupts() {
   struct sigaction sa {};
@@ -46,6 +50,32 @@ void catchInterrupts() {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+}
+// Under mpirun a rank ends at once on SIGINT, SIGTERM (what mpirun sends its ranks when it is
+// interrupted) or SIGUSR1 (which mpirun forwards): rank 0 removes its temporaries and says
+// so, and every rank exits with 130, which mpirun passes on as its own exit code when the
+// signal came from SIGUSR1; on SIGINT and SIGTERM Open MPI's mpirun exits 1 whatever its
+// ranks do (docs/cli.md).
+int gRank = 0;
+extern "C" void onMpiInterrupt(int) {
+  removeStagedFilesNow();
+  static const char msg[] = "pvrt: interrupted; nothing was written\n";
+  if (gRank == 0) (void)!write(STDERR_FILENO, msg, sizeof msg - 1);
+  // mpirun signals the ranks one after another, and once one has exited it SIGKILLs the
+  // rest: rank 0, which holds the temporaries, could then be killed before its own SIGTERM
+  // came (2 of 6 interrupts left a temporary). The other ranks let it go first.
+  if (gRank != 0) {
+    const timespec wait{0, 300 * 1000 * 1000};
+    nanosleep(&wait, nullptr);
+  }
+  _exit(int(ExitCode::Interrupted));
+}
+void catchMpiInterrupts(int rank) {
+  gRank = rank;
+  struct sigaction sa {};
+  sa.sa_handler = onMpiInterrupt;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGUSR1}) sigaction(sig, &sa, nullptr);
 }
 int interrupted() {
   std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
@@ -56,6 +86,7 @@ struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
   std::string gatherName = "gather", loadMap;
   bool masterRenders = true;
+  double mpiTimeout = 30;  // seconds a rank of the node may be stopped before the job ends
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
   uint64_t seed = 0;
   bool stats = false, quiet = false;
@@ -158,7 +189,8 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
 
 // The load map as the paper's figures show it: linear work counts in an EXR and a
 // log-scale false-colour PNG (dark blue: little work, yellow-white: most).
-void writeLoadMap(const std::string& prefix, const std::vector<float>& load, int width, int height) {
+void stageLoadMap(OutputFiles& out, const std::string& prefix, const std::vector<float>& load, int width,
+                  int height) {
   Image raw(width, height), colour(width, height);
   // Log scale from the cheapest pixel to the dearest, so that both ends are visible.
   float lo = 0, hi = 0;
@@ -178,24 +210,31 @@ void writeLoadMap(const std::string& prefix, const std::vector<float>& load, int
       const double f = t - i;
       colour.set(x, y, ramp[i] * (1 - f) + ramp[i + 1] * f);
     }
-  writeImage(raw, prefix + ".exr");
-  writeImage(colour, prefix + ".png");
+  writeImageFile(raw, out.stage(prefix + ".exr"), ".exr", prefix + ".exr");
+  writeImageFile(colour, out.stage(prefix + ".png"), ".png", prefix + ".png");
 }
 
-// Fails before any work is done when the output could not be written as asked.
-void checkOutputFormat(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext != ".png" && ext != ".tga" && ext != ".exr")
-    throw Error(ExitCode::Usage, "cannot write \"" + path + "\": unsupported image format (use .png, .tga or .exr)");
-  // Only a directory known to be missing is refused here; one that cannot even be looked
-  // at (no search permission) is left to the write, which reports why.
-  const auto dir = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  const auto type = std::filesystem::status(dir, ec).type();
-  if (!dir.empty() && (type == std::filesystem::file_type::not_found ||
-                       (!ec && type != std::filesystem::file_type::directory)))
-    throw Error(ExitCode::OutputError, "cannot write \"" + path + "\": no such directory \"" + dir.string() + "\"");
+// The image in the format of `-o` (imageFormatOf: "-" is standard output, as PNG).
+void stageImage(OutputFiles& out, const std::string& path, const Image& image) {
+  const std::string format = imageFormatOf(path);
+  writeImageFile(image, out.stage(path, format), format, path);
+}
+
+// Plans every output of the run and checks it before any work is done: formats, folders,
+// no output that is the scene, no two outputs on one file (core/output_files.h).
+void planOutputs(const RenderOptions& o, OutputFiles& out) {
+  // A scene that cannot be opened at all is the first thing to say (read errors of other
+  // kinds come from the loader).
+  if (::access(o.scene.c_str(), R_OK) != 0)
+    throw sceneFileError(o.scene, std::string("cannot read scene: ") + std::strerror(errno));
+  out.input(o.scene);
+  out.output(o.output, "-o");
+  imageFormatOf(o.output);
+  if (!o.loadMap.empty()) {
+    out.output(o.loadMap + ".exr", "--load-map");
+    out.output(o.loadMap + ".png", "--load-map");
+  }
+  if (!o.saveScene.empty()) out.output(o.saveScene, "--save-scene");
 }
 
 // Everything up to a built scene; local to each process (and to each MPI rank).
@@ -205,10 +244,12 @@ struct Prepared {
   Scene scene;
   double loadS = 0, buildS = 0;
   size_t loadPeak = 0, buildPeak = 0;  // peak resident bytes at the end of each stage
+  std::string savedScene;  // --save-scene's bytes, written with the image
 };
 
-Prepared prepare(const RenderOptions& o) {
-  checkOutputFormat(o.output);
+// `writes`: this process writes the outputs (not the other MPI ranks).
+Prepared prepare(const RenderOptions& o, bool writes) {
+  imageFormatOf(o.output);
   if (o.hasTimeBudget && !(o.timeBudget > 0))
     throw Error(ExitCode::Usage, fmt::format("--time-budget must be a positive number of seconds, got {}", o.timeBudget));
   if (o.hasTimeBudget && o.backendName == "mpi")
@@ -245,11 +286,10 @@ Prepared prepare(const RenderOptions& o) {
   s.schedule.tileSize = o.tileSize;
   s.loadMap = !o.loadMap.empty();
   s.cancel = &gInterrupted;
-  if (!o.loadMap.empty()) checkOutputFormat(o.loadMap + ".png");
-  if (!o.saveScene.empty() && (o.backendName != "mpi" || cluster::rank() == 0)) {
+  if (!o.saveScene.empty() && writes) {  // kept until the image is done: nothing on disk before
     SceneDesc copy = p.desc;
     copy.image = ImageDesc{s.width, s.height, {}};
-    writeFileAtomically(o.saveScene, sceneToXml(copy));
+    p.savedScene = sceneToXml(copy);
   }
   const auto t1 = Clock::now();
   p.scene = buildScene(std::move(p.desc));  // frees the objects' descriptions early
@@ -262,7 +302,9 @@ int runLocal(const RenderOptions& o) {
   const auto start = Clock::now();
   // Caught from the start, so an interrupt while a big scene loads also exits with 130.
   catchInterrupts();
-  Prepared p = prepare(o);
+  OutputFiles out;
+  planOutputs(o, out);
+  Prepared p = prepare(o, true);
   if (gInterrupted) return interrupted();
   if (o.hasTimeBudget) {
     const BudgetPlan plan = planForBudget(p.scene, p.settings, o.timeBudget);
@@ -282,8 +324,10 @@ int runLocal(const RenderOptions& o) {
   if (r.cancelled || gInterrupted) return interrupted();
   // From here on an interrupt lets the (atomic) write finish: the image is complete.
   const auto t2 = Clock::now();
-  writeImage(r.image, o.output);
-  if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.load, s.width, s.height);
+  stageImage(out, o.output, r.image);
+  if (!o.loadMap.empty()) stageLoadMap(out, o.loadMap, r.load, s.width, s.height);
+  if (!o.saveScene.empty()) out.stageBytes(o.saveScene, p.savedScene);
+  out.commit();
   const double writeS = since(t2);
   if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS, {p.loadPeak, p.buildPeak});
   if (!o.quiet && !o.stats) fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, s.width, s.height, since(start));
@@ -304,6 +348,8 @@ int runMpi(const RenderOptions& o) {
   // The ranks of a node that may run on the same CPUs divide them: without --threads each
   // takes its share (at least one), and where they all fit each is kept to a run of CPUs
   // of its own, so no rank's threads ever compete with another's.
+  catchMpiInterrupts(me);
+  cluster::startWatchdog(o.mpiTimeout);
   const cluster::NodePlace place = cluster::placeOnNode(allowedCpus());
   setCpuShare({place.slot, place.slots});
   if (o.threads > 0) setThreadBudget(o.threads);
@@ -311,9 +357,11 @@ int runMpi(const RenderOptions& o) {
   // Stage 1, local to each rank: anything may fail. Then every rank learns whether any
   // did, so all stop together with the first message, printed once, instead of hanging.
   std::optional<Prepared> p;
+  std::optional<OutputFiles> out;  // rank 0's, which writes them
   std::string failure;
   try {
-    p.emplace(prepare(o));
+    if (me == 0) planOutputs(o, out.emplace());
+    p.emplace(prepare(o, me == 0));
     if (envInt("PVRT_FAIL_RANK", -1) == me)
       throw Error(ExitCode::SceneError, fmt::format("rank {}: injected failure (PVRT_FAIL_RANK)", me));
   } catch (const Error& e) {
@@ -341,16 +389,20 @@ int runMpi(const RenderOptions& o) {
     r = renderDistributed(p->scene, p->settings, d);
   } catch (const Error& e) {
     std::fprintf(stderr, "%s\n", e.what());
+    removeStagedFilesNow();  // the abort runs no destructors
     cluster::abortAll(int(e.code()));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "pvrt: rank %d: %s\n", me, e.what());
+    removeStagedFilesNow();
     cluster::abortAll(int(ExitCode::Internal));
   }
   if (me != 0) return 0;  // only rank 0 writes
   const RenderSettings& s = p->settings;
   const auto t2 = Clock::now();
-  writeImage(r.render.image, o.output);
-  if (!o.loadMap.empty()) writeLoadMap(o.loadMap, r.render.load, s.width, s.height);
+  stageImage(*out, o.output, r.render.image);
+  if (!o.loadMap.empty()) stageLoadMap(*out, o.loadMap, r.render.load, s.width, s.height);
+  if (!o.saveScene.empty()) out->stageBytes(o.saveScene, p->savedScene);
+  out->commit();
   const double writeS = since(t2);
   if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, {p->loadPeak, p->buildPeak}, r.ranks);
   if (!o.quiet && !o.stats)
@@ -367,7 +419,8 @@ Command addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* c = app.add_subcommand("render", "Render an XML scene to an image (PNG, TGA or EXR)");
   c->add_option("scene", o->scene, "Scene file (XML)")->required();
-  c->add_option("-o,--output", o->output, "Output image: .png, .tga (8-bit sRGB) or .exr (linear float)")
+  c->add_option("-o,--output", o->output,
+                "Output image: .png, .tga (8-bit sRGB) or .exr (linear float); - for standard output (PNG)")
       ->required();
   c->add_option("-W,--width", o->width, "Image width (default: the scene's <image>, else 320)")
       ->check(CLI::Range(1, 65536));
@@ -405,6 +458,11 @@ Command addRenderCommand(CLI::App& app) {
   c->add_flag("--master-renders,!--no-master-renders", o->masterRenders,
               "MPI dynamic: rank 0 renders tiles too, answering requests between them (the default); "
               "--no-master-renders keeps it to answering");
+  c->add_option("--mpi-timeout", o->mpiTimeout,
+                "MPI: end the job (exit 75) when a rank on this node has been stopped (SIGSTOP) this many seconds "
+                "(0: never)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   c->add_option("--load-map", o->loadMap,
                 "Write the work per pixel to PREFIX.exr (counts) and PREFIX.png (log-scale false colour)");
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");

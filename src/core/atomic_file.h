@@ -1,5 +1,5 @@
-// Writes a whole file or nothing: the bytes go to a temporary file beside the target,
-// which is renamed over it only once complete. What the user had is never half-replaced.
+// Writes a whole file or nothing, for a command with one output: the bytes go to a
+// temporary file (core/output_files.h) that replaces the target only once complete.
 #pragma once
 
 #include <string>
@@ -8,7 +8,5 @@ namespace pvrt {
 
 // Throws pvrt::Error(ExitCode::OutputError) on failure, leaving no temporary behind.
 void writeFileAtomically(const std::string& path, const std::string& bytes);
-// A unique temporary name in the target's directory that keeps the target's extension.
-std::string temporarySibling(const std::string& path);
 
 }  // namespace pvrt

@@ -14,6 +14,7 @@ enum class ExitCode : int {
   Usage = 2,       // bad command line
   SceneError = 3,  // the scene file could not be read or is invalid
   OutputError = 4, // the image could not be written
+  Stalled = 75,    // MPI: a rank was stopped for longer than --mpi-timeout (cluster::startWatchdog)
   Interrupted = 130,
   Internal = 70,
 };
@@ -35,7 +36,7 @@ inline Error sceneError(const SourceLoc& loc, const std::string& element, const 
 
 // `file: error: what is wrong`, for a scene that could not be read at all (no line to name).
 inline Error sceneFileError(const std::string& file, const std::string& what) {
-  return Error(ExitCode::SceneError, file + ": error: " + what);
+  return Error(ExitCode::SceneError, printableName(file) + ": error: " + what);
 }
 
 }  // namespace pvrt

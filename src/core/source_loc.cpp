@@ -31,4 +31,24 @@ const std::string& FileName::str() const {
   return name_ ? *name_ : empty;
 }
 
+std::string printableName(std::string_view name) {
+  std::string out;
+  out.reserve(name.size());
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      out += c;
+      continue;
+    }
+    static const char hex[] = "0123456789abcdef";
+    switch (c) {
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default: out += std::string("\\x") + hex[u >> 4] + hex[u & 15];
+    }
+  }
+  return out;
+}
+
 }  // namespace pvrt

@@ -23,10 +23,14 @@ class FileName {
   const std::string* name_ = nullptr;
 };
 
+// `name` as messages show it: control characters (a newline in a file name, say) escaped as
+// \n, \r, \t or \xNN, so that every message stays one line.
+std::string printableName(std::string_view name);
+
 struct SourceLoc {
   FileName file;
   int line = 0;
-  std::string str() const { return file.str() + ":" + std::to_string(line); }
+  std::string str() const { return printableName(file.str()) + ":" + std::to_string(line); }
   bool operator==(const SourceLoc&) const = default;
 };
 

@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <limits>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/image_io.h"
 #include "image/oiio_module.h"
@@ -59,16 +58,8 @@ void writeDifferenceImage(const std::string& a, const std::string& b, const std:
   if (wa != wb || ha != hb) throw Error(ExitCode::OutputError, "cannot diff images of different sizes");
   std::vector<uint8_t> diff(pa.size());
   for (size_t i = 0; i < pa.size(); ++i) diff[i] = uint8_t(std::min(255, std::abs(int(pa[i]) - int(pb[i])) * scale));
-  const std::string tmp = temporarySibling(out);
-  const std::string why = writePng8(tmp, wa, ha, diff.data());
-  if (!why.empty()) {
-    std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, "cannot write \"" + out + "\": " + why);
-  }
-  if (std::rename(tmp.c_str(), out.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, "cannot write \"" + out + "\"");
-  }
+  const std::string why = writePng8(out, wa, ha, diff.data());
+  if (!why.empty()) throw Error(ExitCode::OutputError, "cannot write the difference image: " + why);
 }
 
 }  // namespace pvrt

@@ -38,7 +38,8 @@ enum class CompareExit : int { Match = 0, Warning = 1, Failure = 2, SizeMismatch
 CompareResult compareImages8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int width, int height);
 // Reads both files; throws pvrt::Error(OutputError) when one cannot be read.
 CompareResult compareFiles(const std::string& a, const std::string& b);
-// |a - b| x `scale`, written as an 8-bit PNG (atomically).
+// |a - b| x `scale`, written as an 8-bit PNG to exactly `out` (a staged temporary,
+// core/output_files.h).
 void writeDifferenceImage(const std::string& a, const std::string& b, const std::string& out, int scale = 16);
 
 }  // namespace pvrt

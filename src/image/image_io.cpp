@@ -9,7 +9,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include "core/atomic_file.h"
+#include <sys/stat.h>
+
+#include "core/output_files.h"
 #include "core/error.h"
 #include "image/oiio_module.h"
 #include "image/png_io.h"
@@ -26,7 +28,7 @@ std::string extensionOf(const std::string& path) {
 }
 
 Error outputError(const std::string& path, const std::string& what) {
-  return Error(ExitCode::OutputError, "cannot write \"" + path + "\": " + what);
+  return Error(ExitCode::OutputError, "cannot write \"" + printableName(path) + "\": " + what);
 }
 
 }  // namespace
@@ -106,44 +108,51 @@ std::vector<uint8_t> encodeSrgb8(const Image& image) {
   return out;
 }
 
-void writeImage(const Image& image, const std::string& path) {
+std::string imageFormatOf(const std::string& path) {
   const std::string ext = extensionOf(path);
-  if (ext != ".png" && ext != ".tga" && ext != ".exr")
-    throw Error(ExitCode::Usage, "cannot write \"" + path + "\": unsupported image format (use .png, .tga or .exr)");
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  const auto type = std::filesystem::status(dir, ec).type();
-  if (!dir.empty() && type != std::filesystem::file_type::directory)
-    throw outputError(path, type == std::filesystem::file_type::not_found || !ec
-                                ? "no such directory \"" + dir.string() + "\""
-                                : ec.message());
+  if (ext == ".png" || ext == ".tga" || ext == ".exr") return ext;
+  // Standard output, a device or a pipe has no format in its name: PNG.
+  struct stat st {};
+  const bool stream = path == "-" || path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0 ||
+                      (::stat(path.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)));
+  if (stream && ext.empty()) return ".png";
+  throw Error(ExitCode::Usage, "cannot write \"" + printableName(path) +
+                                   "\": unsupported image format (use .png, .tga or .exr)");
+}
 
-  // Write to a temporary sibling and rename it into place when complete.
-  const std::string tmp = temporarySibling(path);
+void writeImageFile(const Image& image, const std::string& path, const std::string& extension,
+                    const std::string& name) {
+  std::string ext = extension;
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   std::string why;
   if (ext == ".png") {
-    why = writePng8(tmp, image.width(), image.height(), encodeSrgb8(image).data());
+    why = writePng8(path, image.width(), image.height(), encodeSrgb8(image).data());
   } else if (ext == ".exr") {
-    why = oiioModule().write(tmp, image.width(), image.height(), true, image.data().data());
+    why = oiioModule().write(path, image.width(), image.height(), true, image.data().data());
   } else {
-    why = oiioModule().write(tmp, image.width(), image.height(), false, encodeSrgb8(image).data());
+    why = oiioModule().write(path, image.width(), image.height(), false, encodeSrgb8(image).data());
   }
-  if (!why.empty()) {
-    std::remove(tmp.c_str());
-    throw outputError(path, why);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw outputError(path, why);
-  }
+  if (!why.empty()) throw outputError(name, why);
+}
+
+void writeImage(const Image& image, const std::string& path) {
+  const std::string format = imageFormatOf(path);
+  OutputFiles out;
+  out.output(path, "the image");
+  writeImageFile(image, out.stage(path, format), format, path);
+  out.commit();
 }
 
 std::vector<uint8_t> readImage8(const std::string& path, int& width, int& height) {
+  // Only regular files: a device or a pipe may never end (pvrt compare /dev/zero x.png).
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw Error(ExitCode::SceneError, "cannot read image \"" + printableName(path) + "\": " +
+                                          (S_ISDIR(st.st_mode) ? "it is a directory" : "not a regular file"));
   std::vector<uint8_t> rgb;
   const std::string why = isPngFile(path) ? readPng8(path, width, height, rgb)
                                           : oiioModule().read8(path, width, height, rgb);
-  if (!why.empty()) throw Error(ExitCode::SceneError, "cannot read image \"" + path + "\": " + why);
+  if (!why.empty()) throw Error(ExitCode::SceneError, "cannot read image \"" + printableName(path) + "\": " + why);
   return rgb;
 }
 

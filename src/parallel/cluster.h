@@ -33,6 +33,14 @@ struct NodePlace {
 };
 NodePlace placeOnNode(const std::vector<int>& cpus);
 
+// Watches the other ranks of this node (collective: every rank calls it once). When one of
+// them has been stopped (SIGSTOP: state T in /proc; a debugger's tracing stop does not
+// count) for `seconds`, the lowest rank of the node that is not stopped prints which and ends
+// the job with exit code 75 instead of waiting for it for ever. A rank's own stop (the whole
+// job stopped with Ctrl-Z, say) restarts its clocks. 0 seconds: no watchdog. Ranks on other
+// nodes are not watched (their /proc cannot be seen).
+void startWatchdog(double seconds);
+
 // Communication cost of this rank so far: seconds spent in calls and bytes sent.
 struct CommCounters {
   double seconds = 0;

@@ -4,10 +4,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cstdio>
 #include <cstring>
 #include <thread>
+#include <vector>
+
+#include <unistd.h>
 
 #include "core/error.h"
+#include "core/output_files.h"
 #include "parallel/cluster.h"
 
 namespace pvrt::cluster {
@@ -109,6 +114,67 @@ NodePlace placeOnNode(const std::vector<int>& cpus) {
     ++place.slots;
   }
   return place;
+}
+
+namespace {
+
+// The state letter of process `pid` (/proc/PID/stat: "pid (comm) S ..."), 0 when gone.
+char processState(int pid) {
+  char path[64];
+  std::snprintf(path, sizeof path, "/proc/%d/stat", pid);
+  std::FILE* f = std::fopen(path, "r");
+  if (!f) return 0;
+  char buf[512];
+  const size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+  std::fclose(f);
+  buf[n] = 0;
+  const char* close = std::strrchr(buf, ')');  // the command name may hold anything, even ')'
+  return close && close[1] == ' ' ? close[2] : 0;
+}
+
+}  // namespace
+
+void startWatchdog(double seconds) {
+  MPI_Comm node;
+  check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node), "MPI_Comm_split_type");
+  int n = 1;
+  MPI_Comm_size(node, &n);
+  const int mine[2] = {rank(), int(::getpid())};
+  std::vector<int> all(size_t(2 * n));
+  const int rc = MPI_Allgather(mine, 2, MPI_INT, all.data(), 2, MPI_INT, node);
+  MPI_Comm_free(&node);
+  check(rc, "MPI_Allgather");
+  if (!(seconds > 0) || n < 2) return;
+  std::thread([seconds, all, n, me = mine[0]] {
+    using Clock = std::chrono::steady_clock;
+    std::vector<Clock::time_point> stoppedSince(static_cast<size_t>(n), Clock::time_point{});
+    std::vector<bool> stopped(size_t(n), false);
+    Clock::time_point last = Clock::now();
+    for (;;) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      const Clock::time_point now = Clock::now();
+      // Far more than 100 ms since the last look: this rank was stopped itself.
+      const bool selfStopped = now - last > std::chrono::seconds(1);
+      last = now;
+      int longest = -1, lowestRunning = -1;
+      for (int i = 0; i < n; ++i) {
+        const int worldRank = all[size_t(2 * i)], pid = all[size_t(2 * i + 1)];
+        const bool isStopped = worldRank != me && processState(pid) == 'T';
+        if (isStopped && (!stopped[size_t(i)] || selfStopped)) stoppedSince[size_t(i)] = now;
+        stopped[size_t(i)] = isStopped;
+        if (!isStopped && (lowestRunning < 0 || worldRank < lowestRunning)) lowestRunning = worldRank;
+        if (isStopped && std::chrono::duration<double>(now - stoppedSince[size_t(i)]).count() >= seconds)
+          longest = i;
+      }
+      if (longest < 0 || lowestRunning != me) continue;
+      std::fprintf(stderr,
+                   "pvrt: error: rank %d (pid %d) has been stopped for %g s; ending the job (--mpi-timeout %g)\n",
+                   all[size_t(2 * longest)], all[size_t(2 * longest + 1)], seconds, seconds);
+      std::fflush(stderr);
+      removeStagedFilesNow();  // rank 0's temporaries: _exit runs no destructors
+      _exit(int(ExitCode::Stalled));
+    }
+  }).detach();
 }
 
 const CommCounters& counters() { return gCounters; }

@@ -39,9 +39,23 @@ CpuShare cpuShare() { return {gSlot.load(), gSlots.load()}; }
 
 void setThreadBudget(int threads) { gBudget = std::max(0, threads); }
 
+int threadsFromEnvironment() {
+  const char* env = std::getenv("OMP_NUM_THREADS");
+  if (!env || !*env) return 0;
+  // OpenMP allows a list, one count per nesting level ("4,2"): the first is ours.
+  const char* p = env;
+  while (*p == ' ') ++p;
+  long n = 0;
+  bool digits = false;
+  for (; *p >= '0' && *p <= '9'; ++p, digits = true) n = std::min(n * 10 + (*p - '0'), long(kMaxThreads) + 1);
+  while (*p == ' ') ++p;
+  if (!digits || (*p && *p != ',') || n < 1 || n > kMaxThreads) return -1;
+  return int(n);
+}
+
 int threadBudget() {
   if (const int set = gBudget.load(); set > 0) return set;
-  if (const char* env = std::getenv("OMP_NUM_THREADS"); env && std::atoi(env) > 0) return std::atoi(env);
+  if (const int env = threadsFromEnvironment(); env > 0) return env;
   return std::max(1, int(allowedCpus().size()) / gSlots.load());
 }
 

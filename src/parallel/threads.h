@@ -19,6 +19,14 @@ struct CpuShare {
 void setCpuShare(CpuShare share);
 CpuShare cpuShare();
 
+// The most threads pvrt takes (--threads, OMP_NUM_THREADS): libgomp aborts when it cannot
+// start as many as it is asked for (OMP_NUM_THREADS=100000).
+inline constexpr int kMaxThreads = 1024;
+// OMP_NUM_THREADS as pvrt reads it: 0 when unset or empty, -1 when it is not a whole number
+// from 1 to kMaxThreads (optionally followed by OpenMP's ",inner,..." list), else the number.
+// main() refuses -1 with a usage error before any command runs.
+int threadsFromEnvironment();
+
 // The threads each stage uses by default: what setThreadBudget() set (--threads), else
 // OMP_NUM_THREADS when it is set, else this process's share of its allowed CPUs (at least 1).
 int threadBudget();

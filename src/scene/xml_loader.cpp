@@ -889,8 +889,24 @@ size_t pieceSize(size_t fileBytes, size_t pieceBytes) {
   return std::min(pieceBytes, std::max(size_t(64) << 10, even));
 }
 
+// XML 1.0 (section 2.11): a lone carriage return ends a line, as a line feed does, and CR LF
+// is one line end. tinyxml2 counts line feeds only, so in a file with CR line ends every
+// message would say line 1: such a file is read with each lone CR as LF (the same length, so
+// every offset holds). CR LF needs nothing: its LF is counted once. Empty when no lone CR.
+std::string withLineFeeds(std::string_view bytes) {
+  std::string out;
+  for (size_t i = bytes.find('\r'); i != std::string_view::npos; i = bytes.find('\r', i + 1)) {
+    if (i + 1 < bytes.size() && bytes[i + 1] == '\n') continue;
+    if (out.empty()) out.assign(bytes);
+    out[i] = '\n';
+  }
+  return out;
+}
+
 SceneDesc parse(std::string_view bytes, const std::string& name, const LoadOptions& options) {
   if (options.piecesRead) *options.piecesRead = 0;
+  const std::string lineFeeds = withLineFeeds(bytes);
+  if (!lineFeeds.empty()) bytes = lineFeeds;
   if (bytes.size() > options.pieceBytes) {
     const std::optional<XmlSplit> split = splitXmlRoot(bytes, pieceSize(bytes.size(), options.pieceBytes), isObjectName);
     // What lies around the pieces (the skeleton) is checked here, the pieces by the loader.

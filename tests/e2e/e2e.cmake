@@ -157,3 +157,95 @@ pvrt_expect_error(time_budget_with_spp 2 "excludes"
 add_test(NAME e2e.jitter_any_c
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/jitter_any_c.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/jitter-any-c)
 set_tests_properties(e2e.jitter_any_c PROPERTIES LABELS e2e TIMEOUT 300)
+
+# Outputs (core/output_files.h): temporaries no planted link can redirect, links, FIFOs,
+# standard output, nothing committed when the run fails, paths checked before any work.
+foreach(case planted_links symlink fifo dev_stdout dash not_committed permissions unwritable newline_name)
+  add_test(NAME e2e.outputs.${case}
+    COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/outputs.sh ${case} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
+            ${PVRT_E2E_DIR}/outputs/${case})
+  set_tests_properties(e2e.outputs.${case} PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60 SKIP_RETURN_CODE 77)
+endforeach()
+# Output paths checked before any work: each of these renders would take minutes (4000 x 2500
+# at 16 samples), so the test's 60 s limit fails a check made only after the render.
+set(LONG_RENDER -W 4000 -H 2500 --spp 16 --quiet)
+pvrt_expect_error(output_is_the_scene 4 "cannot write \".*/scene\\.png\": it is an input of this run$"
+  EXISTING scene.png ARGS render <DIR>/scene.png -o <DIR>/scene.png ${LONG_RENDER})
+pvrt_expect_error(save_scene_is_the_scene 4 "cannot write \".*/scene\\.xml\": it is an input of this run$"
+  EXISTING scene.xml ABSENT out.png ARGS render <DIR>/scene.xml -o <DIR>/out.png --save-scene <DIR>/scene.xml ${LONG_RENDER})
+pvrt_expect_error(output_twice_load_map 4 "cannot write \".*/x\\.png\": it is also the output of -o"
+  ABSENT x.png x.exr ARGS render ${PVRT_PAPER1} -o <DIR>/x.png --load-map <DIR>/x ${LONG_RENDER})
+pvrt_expect_error(output_twice_save_scene 4 "cannot write \".*/x\\.png\": it is also the output of -o"
+  EXISTING x.png ARGS render ${PVRT_PAPER1} -o <DIR>/x.png --save-scene <DIR>/./x.png ${LONG_RENDER})
+pvrt_expect_error(save_scene_dir_missing 4 "cannot write \".*/nope/s\\.xml\": no such directory"
+  ABSENT out.png nope ARGS render ${PVRT_PAPER1} -o <DIR>/out.png --save-scene <DIR>/nope/s.xml ${LONG_RENDER})
+pvrt_expect_error(load_map_dir_missing 4 "cannot write \".*/nope/m\\.exr\": no such directory"
+  ABSENT out.png nope ARGS render ${PVRT_PAPER1} -o <DIR>/out.png --load-map <DIR>/nope/m ${LONG_RENDER})
+pvrt_expect_error(output_is_a_directory 4 "cannot write \"/tmp\": it is a directory"
+  ABSENT out.png ARGS render ${PVRT_PAPER1} -o /tmp ${LONG_RENDER})
+pvrt_expect_error(accuracy_plot_dir_missing 4 "cannot write \".*/nodir/a\\.png\": no such directory"
+  ABSENT nodir ARGS accuracy ${PVRT_PAPER1} --plot <DIR>/nodir/a.png)
+pvrt_expect_error(accuracy_csv_dir_missing 4 "cannot write \".*/nodir/a\\.csv\": no such directory"
+  ABSENT nodir ARGS accuracy ${PVRT_PAPER1} --csv <DIR>/nodir/a.csv)
+pvrt_expect_error(generate_dir_missing 4 "cannot write \".*/nodir/g\\.xml\": no such directory"
+  ABSENT nodir ARGS generate --spheres 10000000 -o <DIR>/nodir/g.xml)
+pvrt_expect_error(compare_diff_dir_missing 4 "cannot write \".*/nodir/d\\.png\": no such directory"
+  ABSENT nodir ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
+  --diff <DIR>/nodir/d.png)
+
+# Smaller things (issue 29, item 6).
+# OMP_NUM_THREADS is checked as --threads is (libgomp aborted starting 100000 threads).
+foreach(value 100000 1025)
+  add_test(NAME e2e.error.omp_num_threads_${value}
+    COMMAND ${PVRT_EXPECT_ERROR} 2 "^pvrt: error: OMP_NUM_THREADS=\"${value}\" is not a number of threads from 1 to 1024"
+            ${PVRT_E2E_DIR}/error/omp_num_threads_${value} --absent ${PVRT_E2E_DIR}/error/omp_num_threads_${value}/out.png
+            -- env OMP_NUM_THREADS=${value} $<TARGET_FILE:pvrt> render ${PVRT_PAPER1} -W 8 -H 8
+            -o ${PVRT_E2E_DIR}/error/omp_num_threads_${value}/out.png)
+  set_tests_properties(e2e.error.omp_num_threads_${value} PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60)
+endforeach()
+# Values libgomp itself refuses get its warning first, then pvrt's line and exit code 2.
+add_test(NAME e2e.error.omp_num_threads_abc COMMAND sh -c
+  "OMP_NUM_THREADS=abc \"$0\" render \"$1\" -W 8 -H 8 -o \"$2\" 2>&1 | tee /dev/stderr | grep -q '^pvrt: error: OMP_NUM_THREADS=\"abc\" is not a number of threads from 1 to 1024' && [ ! -e \"$2\" ]"
+  $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/omp_num_threads_abc.png)
+set_tests_properties(e2e.error.omp_num_threads_abc PROPERTIES LABELS "e2e;bad-input")
+add_test(NAME e2e.omp_num_threads_list COMMAND env OMP_NUM_THREADS=2,1 $<TARGET_FILE:pvrt> render ${PVRT_PAPER1}
+  -W 8 -H 8 -o ${PVRT_E2E_DIR}/omp_num_threads_list.png --quiet)
+set_tests_properties(e2e.omp_num_threads_list PROPERTIES LABELS e2e)
+# Images that never end are refused, not read for ever (the 20 s limit fails a hang).
+foreach(device zero urandom)
+  pvrt_expect_error(compare_dev_${device} 4 "^cannot read image \"/dev/${device}\": not a regular file$"
+    ABSENT d.png ARGS compare /dev/${device} ${PROJECT_SOURCE_DIR}/reference/paper1.png)
+  set_tests_properties(e2e.error.compare_dev_${device} PROPERTIES TIMEOUT 20)
+endforeach()
+# Line ends: CR (old Mac), LF and CR LF all end a line; the error is on line 4 of each.
+foreach(eol cr lf crlf mixed)
+  if(eol STREQUAL cr)
+    set(e1 "\r")
+    set(e2 "\r")
+  elseif(eol STREQUAL lf)
+    set(e1 "\n")
+    set(e2 "\n")
+  elseif(eol STREQUAL crlf)
+    set(e1 "\r\n")
+    set(e2 "\r\n")
+  else()
+    set(e1 "\r")
+    set(e2 "\r\n")
+  endif()
+  file(WRITE ${GEN}/line_ends_${eol}.xml
+    "<scene>${e1}<camera location=\"0 0 -5\" look_at=\"0 0 0\"/>${e2}<plane normal=\"0 1 0\" distance=\"0\"/>${e1}<sphere center=\"0 0 0\" radus=\"1\"/>${e2}</scene>${e1}")
+  pvrt_expect_error(line_ends_${eol} 3 "/line_ends_${eol}\\.xml:4: error: sphere: unknown attribute 'radus'"
+    ARGS render ${GEN}/line_ends_${eol}.xml -W 8 -H 8)
+endforeach()
+# generate writes only scenes its own loader reads: numbers finite and at most 1e15.
+pvrt_expect_error(generate_radius_1e300 2 "--radius-max 1e\\+300 is out of range"
+  ABSENT out.xml ARGS generate --radius-max 1e300 -o <DIR>/out.xml)
+pvrt_expect_error(generate_nan_box 2 "--sphere-box nan is out of range"
+  ABSENT out.xml ARGS generate --sphere-box nan 0 0 1 1 1 -o <DIR>/out.xml)
+pvrt_expect_error(generate_inf_light_box 2 "--light-box -inf is out of range"
+  ABSENT out.xml ARGS generate --light-box -inf 0 0 1 1 1 -o <DIR>/out.xml)
+pvrt_expect_error(generate_negative_palette 2 "--palette weights must not be negative"
+  ABSENT out.xml ARGS generate --palette 1 -1 0 0 -o <DIR>/out.xml)
+add_test(NAME e2e.generate.extremes_load
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/generate_extremes.sh $<TARGET_FILE:pvrt> ${PVRT_E2E_DIR}/generate-extremes)
+set_tests_properties(e2e.generate.extremes_load PROPERTIES LABELS e2e)

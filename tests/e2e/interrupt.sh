@@ -19,7 +19,9 @@ catches_sigint() { [ $((0x$(awk '/^SigCgt/ {print $2}' /proc/"$1"/status 2>/dev/
 one_run() {  # one_run WHAT: render, signal, check
   local what=$1
   # 4000 x 2500 at 16 samples a pixel takes minutes: the signal always lands mid-render.
-  "$pvrt" render "$scene" -o "$out" -W 4000 -H 2500 --spp 16 --threads 1 --quiet 2>"$err" &
+  # --save-scene and --load-map are committed with the image or not at all.
+  "$pvrt" render "$scene" -o "$out" --save-scene "$dir/saved.xml" --load-map "$dir/map" -W 4000 -H 2500 --spp 16 \
+    --threads 1 --quiet 2>"$err" &
   local pid=$! waited=0
   # Wait until pvrt has started (its libraries load slowly) and installed its handler,
   # then a little more so that it is rendering.

@@ -36,3 +36,10 @@ add_test(NAME mpi.dynamic_slow_rank COMMAND ${PVRT_MPI_CHECK} slow ${PROJECT_BIN
 set_tests_properties(mpi.hybrid.np2.threads2 mpi.hybrid.np2.threads2.dynamic mpi.hybrid.np3.threads2.dynamic
                      mpi.failure_on_one_rank mpi.dynamic_slow_rank
                      PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
+# Interrupting mpirun, and a rank stopped with SIGSTOP (the watchdog, --mpi-timeout).
+foreach(sig INT TERM USR1)
+  add_test(NAME mpi.interrupt.${sig} COMMAND ${PVRT_MPI_CHECK} interrupt ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} ${sig})
+  set_tests_properties(mpi.interrupt.${sig} PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)
+endforeach()
+add_test(NAME mpi.stopped_rank COMMAND ${PVRT_MPI_CHECK} stopped ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
+set_tests_properties(mpi.stopped_rank PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)

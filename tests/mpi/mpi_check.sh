@@ -9,6 +9,13 @@
 #       dynamic balancing gives a rank that sleeps per tile less work than the others
 #   mpi_check.sh loadmap BUILD SCENE NP SCHEDULE
 #       the load map (work per pixel, EXR) gathered from NP ranks is the serial one exactly
+#   mpi_check.sh interrupt BUILD SCENE SIGNAL
+#       SIGNAL (INT, TERM or USR1) to mpirun mid-render ends the job within 3 s; an existing
+#       output is left as it was, no saved scene and no temporary appear; USR1, which mpirun
+#       forwards, ends it with 130 (on INT and TERM Open MPI's mpirun exits 1 itself)
+#   mpi_check.sh stopped BUILD SCENE
+#       a rank stopped with SIGSTOP ends the job (exit 75, one message) once --mpi-timeout
+#       (2 s here) has passed, instead of hanging
 #   mpi_check.sh defaults BUILD SCENE NP
 #       without --threads or OMP_NUM_THREADS, NP ranks on this node divide its CPUs: each
 #       has max(1, CPUs / NP) threads, never a thread per CPU each
@@ -40,6 +47,57 @@ failure)
   [ "$(grep -c 'injected failure' "$work/err")" -eq 1 ] || { echo "expected the message exactly once"; exit 1; }
   [ ! -e "$work/out.png" ] || { echo "an output file was written"; exit 1; }
   [ "$elapsed" -le 20 ] || { echo "took ${elapsed}s to stop"; exit 1; }
+  # A saved scene is committed with the image or not at all (before: written by rank 0 even
+  # when another rank then failed).
+  PVRT_FAIL_RANK=1 timeout 60 "${mpirun[@]}" -x PVRT_FAIL_RANK -np 2 "$pvrt" render "$scene" -o "$work/out.png" \
+    --save-scene "$work/saved.xml" --backend mpi "${size[@]}" 2>/dev/null
+  [ -z "$(ls -A "$work" | grep -v '^err$')" ] || { echo "left behind: $(ls -A "$work")"; exit 1; }
+  ;;
+interrupt)
+  sig=$1
+  mkdir "$work/out" && echo "existing" >"$work/out/out.png"
+  "${mpirun[@]}" -np 2 "$pvrt" render "$scene" -o "$work/out/out.png" --save-scene "$work/out/saved.xml" \
+    --backend mpi --threads 1 -W 4000 -H 2500 --spp 16 --quiet 2>"$work/err" &
+  pid=$!
+  sleep 4  # started and rendering
+  t0=$(date +%s%N)
+  kill -"$sig" $pid
+  wait $pid
+  rc=$? ms=$((($(date +%s%N) - t0) / 1000000))
+  echo "SIG$sig to mpirun: exit $rc after $ms ms"
+  cat "$work/err"
+  fail=0
+  [ $ms -le 3000 ] || { echo "took $ms ms to end"; fail=1; }
+  want=1
+  [ "$sig" = USR1 ] && want=130
+  [ $rc -eq $want ] || { echo "exit $rc, expected $want"; fail=1; }
+  [ "$(cat "$work/out/out.png")" = existing ] || { echo "the existing output was changed"; fail=1; }
+  [ "$(ls -A "$work/out")" = out.png ] || { echo "left behind: $(ls -A "$work/out")"; fail=1; }
+  exit $fail
+  ;;
+stopped)
+  "${mpirun[@]}" -np 2 "$pvrt" render "$scene" -o "$work/out.png" --backend mpi --threads 1 --mpi-timeout 2 \
+    -W 4000 -H 2500 --spp 16 --quiet 2>"$work/err" &
+  pid=$!
+  sleep 4
+  rank1=
+  for p in $(pgrep -P $pid); do  # mpirun's children are the ranks: rank 1 by its environment
+    grep -qz '^OMPI_COMM_WORLD_RANK=1$' /proc/"$p"/environ 2>/dev/null && rank1=$p
+  done
+  [ -n "$rank1" ] || { echo "rank 1 not found among mpirun's children"; kill $pid; exit 1; }
+  t0=$(date +%s%N)
+  kill -STOP "$rank1"
+  wait $pid
+  rc=$? ms=$((($(date +%s%N) - t0) / 1000000))
+  kill -CONT "$rank1" 2>/dev/null
+  echo "rank pid $rank1 stopped: mpirun exit $rc after $ms ms"
+  cat "$work/err"
+  fail=0
+  [ $rc -eq 75 ] || { echo "exit $rc, expected 75"; fail=1; }
+  [ $ms -ge 2000 ] && [ $ms -le 6000 ] || { echo "ended after $ms ms, expected 2-6 s (--mpi-timeout 2)"; fail=1; }
+  [ "$(grep -c 'has been stopped for 2 s; ending the job' "$work/err")" -eq 1 ] || { echo "expected the message once"; fail=1; }
+  [ -z "$(ls -A "$work" | grep -v '^err$')" ] || { echo "left behind: $(ls -A "$work")"; fail=1; }
+  exit $fail
   ;;
 slow)
   PVRT_SLOW_RANK=1:30 "${mpirun[@]}" -x PVRT_SLOW_RANK -np 3 "$pvrt" render "$scene" -o "$work/out.png" \
@@ -53,11 +111,14 @@ slow)
   ;;
 loadmap)
   np=$1 schedule=$2
-  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial --load-map "$work/serial" "${size[@]}" || exit 1
+  # (The maps had the images' names before, `--load-map serial` beside `-o serial.png`: the map's
+  # PNG silently replaced the render. Two outputs on one file are now refused.)
+  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial --load-map "$work/serial-map" "${size[@]}" || exit 1
   "${mpirun[@]}" -np "$np" "$pvrt" render "$scene" -o "$work/mpi.png" --backend mpi --schedule "$schedule" \
-    --threads 2 --load-map "$work/mpi" "${size[@]}" || exit 1
+    --threads 2 --load-map "$work/mpi-map" "${size[@]}" || exit 1
   "$pvrt" compare "$work/serial.png" "$work/mpi.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
-  idiff -fail 0 -warn 0 "$work/serial.exr" "$work/mpi.exr"
+  "$pvrt" compare "$work/serial-map.png" "$work/mpi-map.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
+  idiff -fail 0 -warn 0 "$work/serial-map.exr" "$work/mpi-map.exr"
   ;;
 defaults)
   np=$1
