@@ -101,6 +101,16 @@ struct StagePeaks {
   size_t load = 0, build = 0;  // peak resident bytes at the end of load and of build
 };
 
+// The NaN census (render/kernel_impl.h): on stderr whatever the options, since such
+// pixels are not what the scene asked for.
+void warnNonFinite(const RenderStats& t) {
+  if (t.nonFiniteSamples || t.nonFinitePixels)
+    std::fprintf(stderr,
+                 "pvrt: warning: %llu samples were NaN or infinite (written as black) and %llu pixels were "
+                 "affected or beyond the range of a float; please report the scene\n",
+                 (unsigned long long)t.nonFiniteSamples, (unsigned long long)t.nonFinitePixels);
+}
+
 void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& scene, const RenderResult& r,
                 double loadS, double buildS, double writeS, StagePeaks peaks,
                 const std::vector<RankStats>& ranks = {}) {
@@ -132,6 +142,9 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   line("Total rays", t.totalRays());
   line("Intersection tests", t.intersectionTests);
   line("Shading operations", t.shadingOps);
+  line("Non-finite samples", t.nonFiniteSamples);
+  line("Non-finite pixels", t.nonFinitePixels);
+  fmt::print("  Length unit           {:g} (typical object size {:g})\n", scene.tol.unit, scene.tol.typicalSize);
   const BvhStats& b = scene.bvh.stats();
   fmt::print("  BVH                   {} nodes, {} leaves, depth {}, {:.1f} KiB, built in {:.4f} s\n", b.nodes,
              b.leaves, b.maxDepth, double(b.bytes) / 1024.0, b.buildSeconds);
@@ -329,6 +342,7 @@ int runLocal(const RenderOptions& o) {
   if (!o.saveScene.empty()) out.stageBytes(o.saveScene, p.savedScene);
   out.commit();
   const double writeS = since(t2);
+  warnNonFinite(r.totals);
   if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS, {p.loadPeak, p.buildPeak});
   if (!o.quiet && !o.stats) fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, s.width, s.height, since(start));
   return 0;
@@ -404,6 +418,7 @@ int runMpi(const RenderOptions& o) {
   if (!o.saveScene.empty()) out->stageBytes(o.saveScene, p->savedScene);
   out->commit();
   const double writeS = since(t2);
+  warnNonFinite(r.render.totals);
   if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, {p->loadPeak, p->buildPeak}, r.ranks);
   if (!o.quiet && !o.stats)
     fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, s.width, s.height, cluster::size(),

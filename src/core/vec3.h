@@ -35,6 +35,18 @@ constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(const Vec3& a) { return a / length(a); }
+// a times the power of two (exact) that brings its largest component to [1, 2): its
+// squared length can then neither underflow nor overflow. Zero and non-finite a unchanged.
+inline Vec3 rescaled(const Vec3& a) {
+  const double m = std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z)));
+  if (!(m > 0) || !std::isfinite(m)) return a;
+  const int e = std::ilogb(m);
+  return {std::scalbn(a.x, -e), std::scalbn(a.y, -e), std::scalbn(a.z, -e)};
+}
+// a / |a| for any finite non-zero a, however short or long; where normalize(a) neither
+// underflows nor overflows, the same bits. For the vectors of a scene (normals, the
+// camera's and a spotlight's directions), not per ray.
+inline Vec3 unitDirection(const Vec3& a) { return normalize(rescaled(a)); }
 // Component-wise min and max that, like std::fmin/fmax, ignore a NaN operand, but are
 // inlined (std::fmin/fmax are library calls unless NaNs are ruled out).
 inline double fminInline(double a, double b) { return b < a || a != a ? b : a; }

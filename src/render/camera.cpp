@@ -17,19 +17,19 @@ Camera::Camera(const CameraDesc& desc) {
   Vec3 right = desc.right, direction = desc.direction, up = desc.up;
   if (desc.angle) {
     const double half = *desc.angle * std::numbers::pi / 360.0;
-    direction = normalize(direction) * (length(right) / (2.0 * std::tan(half)));
+    direction = unitDirection(direction) * (length(right) / (2.0 * std::tan(half)));
   }
   Vec3 location = desc.location;
   if (desc.lookAt) {
     const double ld = length(direction), lu = length(up), lr = length(right);
     const double handed = dot(cross(up, direction), right) > 0 ? 1.0 : -1.0;
-    const Vec3 d = normalize(*desc.lookAt - location);
+    const Vec3 d = unitDirection(*desc.lookAt - location);
     Vec3 r = cross(desc.sky, d);
     // Sky parallel to the view (looking straight down): POV-Ray keeps the old right
     // vector but still turns direction and up towards look_at.
     if (std::fabs(r.x) < kCameraEpsilon && std::fabs(r.y) < kCameraEpsilon && std::fabs(r.z) < kCameraEpsilon)
       r = right;
-    r = normalize(r);
+    r = unitDirection(r);
     direction = d * ld;
     up = cross(d, r) * lu;
     right = r * (handed * lr);

@@ -337,7 +337,8 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
                                       double(c.primaryRays), double(c.shadowRays), double(c.reflectedRays),
                                       double(c.refractedRays), double(c.transmittedRays),
                                       double(c.intersectionTests), double(c.shadingOps),
-                                      double(cluster::counters().bytesSent)};
+                                      double(cluster::counters().bytesSent), double(c.nonFiniteSamples),
+                                      double(c.nonFinitePixels)};
   const std::vector<double> gathered = cluster::gatherFixed(packed);
   // Thread counts may differ between ranks: each rank's figures are prefixed by their count.
   std::vector<float> figures = local.threadFigures();
@@ -363,7 +364,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
     rs.items = long(g[4]);
     rs.pixels = long(g[5]);
     rs.counts = {uint64_t(g[6]), uint64_t(g[7]), uint64_t(g[8]), uint64_t(g[9]), uint64_t(g[10]), uint64_t(g[11]),
-                 uint64_t(g[12])};
+                 uint64_t(g[12]), uint64_t(g[14]), uint64_t(g[15])};
     rs.bytesSent = g[13];
     const size_t threads = size_t(threadFigures[at++]);
     for (size_t t = 0; t < threads; ++t, at += 4) {

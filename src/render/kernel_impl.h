@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "render/kernel.h"
@@ -12,6 +14,33 @@ namespace pvrt {
 
 // Below this many rays per pixel a packet saves too little to pay for itself.
 inline constexpr size_t kMinPacket = 4;
+
+// The NaN census. A camera sample whose colour is not finite (NaN or infinite: a bug, or
+// arithmetic past the range of a double) is counted and counts as black: one bad ray must
+// neither poison its pixel nor reach the image, and black is what no light looks like. A
+// pixel whose value overflows the image's float is written as +-FLT_MAX (the brightest
+// value the image can hold) and counted too. Either way `pvrt render` warns.
+inline bool finiteSamples(Color* colors, size_t count, RenderStats& stats) {
+  bool all = true;
+  for (size_t k = 0; k < count; ++k) {
+    Color& c = colors[k];
+    if (std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b)) continue;
+    c = Color();
+    ++stats.nonFiniteSamples;
+    all = false;
+  }
+  return all;
+}
+inline void setPixel(Image& image, int x, int y, Color c, bool finite, RenderStats& stats) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  for (double* v : {&c.r, &c.g, &c.b})
+    if (!(std::fabs(*v) <= kMax)) {
+      *v = std::copysign(kMax, *v);
+      finite = false;
+    }
+  if (!finite) ++stats.nonFinitePixels;
+  image.set(x, y, c);
+}
 
 // The colour of a pixel from its rays' colours, summed in sample order: every path below
 // gives the same bits.
@@ -62,8 +91,11 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
         }
         stats.primaryRays += uint64_t(first[group]);
         tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
-        for (int i = 0; i < group; ++i)
-          image.set(x + i, y, pixelColor(colors.data() + first[i], first[i + 1] - first[i]));
+        for (int i = 0; i < group; ++i) {
+          Color* c = colors.data() + first[i];
+          const bool finite = finiteSamples(c, first[i + 1] - first[i], stats);
+          setPixel(image, x + i, y, pixelColor(c, first[i + 1] - first[i]), finite, stats);
+        }
         x += group - 1;
         continue;
       }
@@ -77,17 +109,20 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
           colors[k] = tracer.trace(scene.camera.ray(x, y, offsets[k].dx, offsets[k].dy, w, h), 0, 1.0,
                                    scene.cameraInteriors);
         }
-        image.set(x, y, pixelColor(colors.data(), n));
+        const bool finite = finiteSamples(colors.data(), n, stats);
+        setPixel(image, x, y, pixelColor(colors.data(), n), finite, stats);
       } else {
         Color sum;
+        bool finite = true;
         for (size_t first = 0; first < n; first += kMaxPacket) {
           const int count = int(std::min<size_t>(kMaxPacket, n - first));
           scene.camera.rays(x, y, offsets.data() + first, count, w, h, rays.data());
           stats.primaryRays += uint64_t(count);
           tracer.tracePacket(rays.data(), count, scene.cameraInteriors, colors.data());
+          finite = finiteSamples(colors.data(), size_t(count), stats) && finite;
           for (int k = 0; k < count; ++k) sum += colors[k];
         }
-        image.set(x, y, sum * (1.0 / double(n)));
+        setPixel(image, x, y, sum * (1.0 / double(n)), finite, stats);
       }
       if (load) load[size_t(y) * w + x] = float(stats.work() - before);
     }

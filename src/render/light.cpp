@@ -18,7 +18,7 @@ Light buildLight(const LightDesc& d) {
   l.shadowless = d.shadowless;
   if (d.spot) {
     l.spot = true;
-    l.spotAxis = normalize(d.spot->pointAt - d.location);
+    l.spotAxis = unitDirection(d.spot->pointAt - d.location);
     l.cosRadius = cosDegrees(d.spot->radius);
     l.cosFalloff = cosDegrees(d.spot->falloff);
     l.tightness = d.spot->tightness;

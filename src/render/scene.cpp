@@ -12,7 +12,32 @@
 
 namespace pvrt {
 
+RayTolerances rayTolerances(double typicalSize, const Vec3& camera) {
+  RayTolerances t;
+  t.typicalSize = typicalSize;
+  t.unit = unitFor(typicalSize);
+  t.minDepth = kMinIsectDepth * t.unit;
+  t.shadow = kShadowTolerance * t.unit;
+  t.maxDistance = std::max(kMaxDistance, kHorizonSizes * typicalSize);
+  const Vec3 c = vabs(camera);
+  t.primaryMinDepth = errorGamma(8) * std::max({c.x, c.y, c.z});
+  return t;
+}
+
 namespace {
+
+// The lower median of the bounded objects' sizes (0 when there are none): what the
+// scene's objects are like, whatever one sky sphere or a speck of dust is like.
+double typicalSize(const std::vector<Bounds>& objects) {
+  std::vector<double> sizes;
+  sizes.reserve(objects.size());
+  for (const Bounds& b : objects)
+    if (!b.empty()) sizes.push_back(sizeOf(b));
+  if (sizes.empty()) return 0;
+  const auto mid = sizes.begin() + std::ptrdiff_t((sizes.size() - 1) / 2);
+  std::nth_element(sizes.begin(), mid, sizes.end());
+  return *mid;
+}
 
 constexpr size_t kObjectsAtATime = 1024;  // the fewest objects of a block of the build
 
@@ -56,13 +81,13 @@ class PrimitiveBuilder {
     add(SphereShape{s.center, s.radius}, true);
   }
   void operator()(const PlaneDesc& p) {
-    const Vec3 n = normalize(p.normal);
+    const Vec3 n = unitDirection(p.normal);
     PlaneShape shape{n, p.distance};
     if (!identity_) {
       // Transform the plane itself: a point on it and its normal.
       const auto inv = xf_.inverse();
       const Vec3 point = xf_.applyPoint(n * p.distance);
-      shape.normal = normalize(inv->applyTransposed(n));
+      shape.normal = unitDirection(inv->applyTransposed(n));
       shape.distance = dot(shape.normal, point);
     }
     add(shape, false);
@@ -81,7 +106,7 @@ class PrimitiveBuilder {
     add(ConeShape{c.base, c.baseRadius, c.cap, c.capRadius, c.open}, !identity_);
   }
   void operator()(const DiscDesc& d) {
-    add(DiscShape{d.center, normalize(d.normal), d.radius * d.radius, d.holeRadius * d.holeRadius},
+    add(DiscShape{d.center, unitDirection(d.normal), d.radius * d.radius, d.holeRadius * d.holeRadius},
         !identity_);
   }
   void operator()(const TriangleDesc& t) { triangle(t, false); }
@@ -100,7 +125,7 @@ class PrimitiveBuilder {
   // renormalised, so that interpolating and then normalising equals POV-Ray's
   // interpolate-in-object-space-then-transform under non-uniform scales and shears.
   Vec3 normal(const Vec3& n, bool single) const {
-    const Vec3 q = normalize(single ? toFloat(n) : n);
+    const Vec3 q = unitDirection(single ? toFloat(rescaled(n)) : n);
     return identity_ ? q : xf_.inverse()->applyTransposed(q);
   }
   void triangle(const TriangleDesc& t, bool single) {
@@ -110,7 +135,8 @@ class PrimitiveBuilder {
     if (single) {
       // POV-Ray's mesh parser makes a triangle whose vertex normals all agree a flat one
       // (with the geometric normal, whatever the normals said).
-      const Vec3 a = normalize(toFloat(t.n1)), b = normalize(toFloat(t.n2)), c = normalize(toFloat(t.n3));
+      const Vec3 a = normalize(toFloat(rescaled(t.n1))), b = normalize(toFloat(rescaled(t.n2))),
+                 c = normalize(toFloat(rescaled(t.n3)));
       if (a == b && b == c) return triangle(TriangleDesc{t.p1, t.p2, t.p3, t.loc}, true);
     }
     const Vec3 p1 = point(t.p1, single), p2 = point(t.p2, single), p3 = point(t.p3, single);
@@ -203,7 +229,9 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
   }
   // Each block's primitives that hold the camera, and their bounds.
   std::vector<std::vector<uint32_t>> interiors(blocks.count);
-  std::vector<Bounds> bounds(blocks.count);
+  // Each object's box (a mesh is one object): a block's primitives come from its own
+  // objects only, so the blocks fill disjoint entries.
+  std::vector<Bounds> objectBounds(objects.size());
   const Vec3 eye = s.camera.location();
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
     PrimitiveSink sink{alone ? nullptr : prims.data() + first[b], alone ? &prims : nullptr};
@@ -214,18 +242,20 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
       Primitive& p = prims[k];
       if (p.inside(eye)) interiors[b].push_back(p.object);
       p.opaque = s.materials[p.material].opaque;
-      bounds[b].extend(p.bounds());
+      objectBounds[p.object].extend(p.bounds());
     }
   });
-  Bounds scene;
-  for (size_t b = 0; b < blocks.count; ++b) {
+  for (size_t b = 0; b < blocks.count; ++b)
     for (uint32_t object : interiors[b])
       if (s.cameraInteriors.find(object) < 0) s.cameraInteriors.push(object);
-    scene.extend(bounds[b]);
-  }
-  s.tol = rayTolerances(scene, eye);
+  s.tol = rayTolerances(typicalSize(objectBounds), eye);
+  // Each shape's tolerances follow its own object's size (planes: the scene's unit), so
+  // that a sky sphere neither coarsens the others nor is lost to theirs.
   parallelBlocks(Blocks(prims.size(), threads, kObjectsAtATime), threads, [&](size_t, size_t lo, size_t hi) {
-    for (size_t k = lo; k < hi; ++k) prims[k].unit = float(s.tol.unit);
+    for (size_t k = lo; k < hi; ++k) {
+      const Bounds& own = objectBounds[prims[k].object];
+      prims[k].unit = float(own.empty() ? s.tol.unit : unitFor(sizeOf(own)));
+    }
   });
   s.effects = deriveEffects(s, desc);
   if (release) std::vector<ObjectDesc>().swap(*release);

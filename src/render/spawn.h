@@ -1,9 +1,10 @@
 // Where rays start and how far they look. POV-Ray's fixed distances (1e-4 minimum depth,
 // 1e-3 shadow tolerance, 1e7 maximum distance, the shapes' own tolerances) hold for scenes
-// of ordinary size; here they are multiplied by the scene's length unit, which is exactly 1
-// for every scene whose objects span between kUnitBand.lo and kUnitBand.hi and follows the
-// span outside that band. Rays spawned from a surface start at pbrt-v4's error-bounded
-// origin, so they cannot meet that surface again at any scale. See docs/robustness.md.
+// of ordinary size. Here each is multiplied by a length unit: the scene's for the ray
+// tolerances, each object's own for its shape tolerances. A unit is exactly 1 for sizes
+// between kUnitBand.lo and kUnitBand.hi (POV-Ray's numbers, bit for bit) and follows the
+// size outside it. Rays spawned from a surface start at pbrt-v4's error-bounded origin, so
+// they cannot meet that surface again at any scale. See docs/robustness.md.
 #pragma once
 
 #include <algorithm>
@@ -17,42 +18,48 @@ namespace pvrt {
 
 inline constexpr double kShadowTolerance = 1e-3;  // POV-Ray's SHADOW_TOLERANCE
 
-// Object spans (the longest side of the box around every bounded object) for which
-// POV-Ray's constants are used as they are.
+// Sizes (the longest side of an object's box) for which POV-Ray's constants are used as
+// they are.
 struct UnitBand {
   double lo, hi;
 };
 inline constexpr UnitBand kUnitBand{0.1, 1e4};
 
+// The maximum distance is at least this many typical object sizes (and never below
+// POV-Ray's 1e7, which it is for typical sizes up to 100): a camera a few objects above a
+// plane then sees it to within 1e-4 radians of its horizon at any scale.
+inline constexpr double kHorizonSizes = 1e5;
+
+// The length unit of an object, or of a scene whose typical object, this size. Below the
+// band the unit is the size itself: the scene is traced as it would be were it scaled to
+// objects of size 1, well inside the band (so a small copy of a scene is traced as the
+// scene is). Above it, size / hi: continuous at hi, and as fine as POV-Ray's relative to
+// a scene of objects of size 1. 0, infinite or NaN (no bounded object): 1.
+inline double unitFor(double size) {
+  if (!(size > 0) || !std::isfinite(size)) return 1;
+  if (size < kUnitBand.lo) return size;
+  if (size > kUnitBand.hi) return size / kUnitBand.hi;
+  return 1;
+}
+
+// The longest side of a box (0 for an empty one: planes).
+inline double sizeOf(const Bounds& b) {
+  if (b.empty()) return 0;
+  const Vec3 e = b.extent();
+  return std::max({e.x, e.y, e.z});
+}
+
 struct RayTolerances {
-  double unit = 1;                       // the scene's length unit
+  double typicalSize = 0;                // the lower median of the objects' sizes (0: only planes)
+  double unit = 1;                       // the scene's length unit: unitFor(typicalSize)
   double minDepth = kMinIsectDepth;      // rays spawned from a surface ignore hits closer than this
   double shadow = kShadowTolerance;      // shadow segments ignore hits this close to either end
   double maxDistance = kMaxDistance;     // hits farther than this are dropped
   double primaryMinDepth = 0;            // camera rays: only the rounding of the camera position
 };
 
-// The length unit for objects within `objects` (empty: only planes, unit 1).
-inline double sceneUnit(const Bounds& objects) {
-  if (objects.empty()) return 1;
-  const Vec3 e = objects.extent();
-  const double span = std::max({e.x, e.y, e.z});
-  if (!(span > 0) || !std::isfinite(span)) return 1;
-  if (span < kUnitBand.lo) return span / kUnitBand.lo;
-  if (span > kUnitBand.hi) return span / kUnitBand.hi;
-  return 1;
-}
-
-inline RayTolerances rayTolerances(const Bounds& objects, const Vec3& camera) {
-  RayTolerances t;
-  t.unit = sceneUnit(objects);
-  t.minDepth = kMinIsectDepth * t.unit;
-  t.shadow = kShadowTolerance * t.unit;
-  t.maxDistance = kMaxDistance * t.unit;
-  const Vec3 c = vabs(camera);
-  t.primaryMinDepth = errorGamma(8) * std::max({c.x, c.y, c.z});
-  return t;
-}
+// The scene's tolerances from its typical object size (render/scene.cpp).
+RayTolerances rayTolerances(double typicalSize, const Vec3& camera);
 
 // A ray leaving the surface point `sp` (normal n, either orientation) along `dir`.
 inline Ray spawnRay(const SurfacePoint& sp, const Vec3& n, const Vec3& dir) {

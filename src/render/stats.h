@@ -14,6 +14,10 @@ struct RenderStats {
   uint64_t transmittedRays = 0;  // transmitted rays that go straight on (ior == 1)
   uint64_t intersectionTests = 0;
   uint64_t shadingOps = 0;       // surface hits shaded (one per hit, lights included)
+  // The NaN census: camera samples whose colour was not finite (written as black) and
+  // pixels that had one, or whose value overflowed a float (written as +-FLT_MAX).
+  uint64_t nonFiniteSamples = 0;
+  uint64_t nonFinitePixels = 0;
 
   uint64_t totalRays() const {
     return primaryRays + shadowRays + reflectedRays + refractedRays + transmittedRays;
@@ -30,6 +34,8 @@ struct RenderStats {
     transmittedRays += o.transmittedRays;
     intersectionTests += o.intersectionTests;
     shadingOps += o.shadingOps;
+    nonFiniteSamples += o.nonFiniteSamples;
+    nonFinitePixels += o.nonFinitePixels;
     return *this;
   }
 };

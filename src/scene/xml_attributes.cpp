@@ -1,5 +1,6 @@
 #include "scene/xml_attributes.h"
 
+#include "scene/separation.h"
 #include "scene/xml_document.h"
 
 #include <tinyxml2.h>
@@ -9,6 +10,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+
+#include <fmt/core.h>
 
 namespace pvrt {
 
@@ -205,7 +208,10 @@ Vec3 Attributes::vec(const char* name) {
 
 Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
   const Vec3 v = fallback ? vec(name, *fallback) : vec(name);
-  if (dot(v, v) == 0) throw error(attr(name) + " must not be the zero vector");
+  if (v == Vec3{}) throw error(attr(name) + " must not be the zero vector");
+  if (std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}) < kMinLength)
+    throw error(attr(name) + " is too short to give a direction: its components are below " +
+                fmt::format("{:g}", kMinLength));
   return v;
 }
 

@@ -21,6 +21,7 @@
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 #include "scene/xml_attributes.h"
+#include "scene/separation.h"
 #include "scene/xml_document.h"
 #include "scene/xml_split.h"
 
@@ -490,7 +491,7 @@ class Loader {
     c.sky = a.nonZeroVec("sky", c.sky);
     if (a.has("look_at")) {
       c.lookAt = a.vec("look_at");
-      if (*c.lookAt == c.location) throw a.error("look_at must differ from location");
+      if (const auto why = tooClose(c.location, *c.lookAt)) throw a.error("look_at must differ from location" + *why);
     }
     if (a.has("angle")) {
       c.angle = a.number("angle");
@@ -501,7 +502,9 @@ class Loader {
         throw a.error("attribute 'angle' must be at least 1e-6 degrees, got " + printable(e->Attribute("angle")));
     }
     a.done();
-    if (dot(cross(c.up, c.right), cross(c.up, c.right)) == 0)
+    // Nearly parallel, they would squeeze the image into a line (unit vectors first: their
+    // cross product must not underflow).
+    if (!(length(cross(unitDirection(c.up), unitDirection(c.right))) > kMinRelativeSeparation))
       throw a.error("up and right must not be parallel");
     c.transforms = transformsOnly(e);
     return c;
@@ -532,7 +535,8 @@ class Loader {
         s.tightness = b.nonNegative("tightness", s.tightness);
         if (s.radius < 0 || s.radius > 90 || s.falloff < 0 || s.falloff > 90)
           throw b.error("radius and falloff must lie between 0 and 90 degrees");
-        if (s.pointAt == l.location) throw b.error("point_at must differ from the light's location");
+        if (const auto why = tooClose(l.location, s.pointAt))
+          throw b.error("point_at must differ from the light's location" + *why);
         l.spot = s;
       } else if (name == "area_light") {
         if (l.area) throw errorAt(c, "may appear only once");
@@ -762,7 +766,7 @@ class Loader {
       c.cap = a.vec("cap");
       c.radius = a.positive("radius");
       c.open = a.boolean("open", false);
-      if (c.base == c.cap) throw a.error("base and cap must differ");
+      if (const auto why = tooClose(c.base, c.cap)) throw a.error("base and cap must differ" + *why);
       o.shape = c;
     } else if (name == "cone") {
       ConeDesc c;
@@ -771,7 +775,7 @@ class Loader {
       c.cap = a.vec("cap");
       c.capRadius = a.nonNegative("cap_radius", c.capRadius);
       c.open = a.boolean("open", false);
-      if (c.base == c.cap) throw a.error("base and cap must differ");
+      if (const auto why = tooClose(c.base, c.cap)) throw a.error("base and cap must differ" + *why);
       if (c.baseRadius == 0 && c.capRadius == 0) throw a.error("base_radius and cap_radius cannot both be 0");
       o.shape = c;
     } else if (name == "disc") {

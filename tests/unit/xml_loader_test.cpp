@@ -879,6 +879,32 @@ TEST(XmlLoader, ErrorDegenerateShapesAndCamera) {
                      "t.xml:2: error: spotlight: point_at must differ from the light's location");
 }
 
+// Nearly equal is as bad as equal when rounding, not the scene, would decide the direction
+// (issue 29 item 1: before, these gave NaN pixels or a blank image with exit 0).
+TEST(XmlLoader, ErrorNearlyDegenerateVectors) {
+  EXPECT_SCENE_ERROR(inScene("<camera location=\"0 2 -5\" look_at=\"1e-170 2 -5\"/>"),
+                     "t.xml:2: error: camera: look_at must differ from location by more than 1e-12 of their "
+                     "coordinates (5): they are 1e-170 apart, a direction rounding decides");
+  EXPECT_SCENE_ERROR(inScene("<light_source location=\"2 5 -3\"><spotlight point_at=\"2.0000000000000004 5 -3\"/>"
+                             "</light_source>"),
+                     "t.xml:2: error: spotlight: point_at must differ from the light's location by more than 1e-12 "
+                     "of their coordinates (5): they are 4.44e-16 apart, a direction rounding decides");
+  EXPECT_SCENE_ERROR(inScene("<cylinder base=\"1 0 0\" cap=\"1 1e-170 0\" radius=\"1\"/>"),
+                     "t.xml:2: error: cylinder: base and cap must differ by more than 1e-12 of their coordinates "
+                     "(1): they are 1e-170 apart, a direction rounding decides");
+  EXPECT_SCENE_ERROR(inScene("<cone base=\"0 0 0\" cap=\"0 1e-120 0\"/>"),
+                     "t.xml:2: error: cone: base and cap must differ by more than 1e-100: they are 1e-120 apart");
+  EXPECT_SCENE_ERROR(inScene("<camera up=\"0 1 0\" right=\"0 1 1e-14\"/>"),
+                     "t.xml:2: error: camera: up and right must not be parallel");
+  EXPECT_SCENE_ERROR(inScene("<disc center=\"0 0 0\" normal=\"0 1e-170 0\" radius=\"1\"/>"),
+                     "t.xml:2: error: disc: attribute 'normal' is too short to give a direction: its components "
+                     "are below 1e-100");
+  // Far apart relative to their coordinates, however small: a scene a millionth the size.
+  EXPECT_NO_THROW(loadSceneString(inScene("<camera location=\"0 6e-6 -1.4e-5\" look_at=\"0 1e-6 2e-6\"/>"
+                                          "<cylinder base=\"0 0 0\" cap=\"0 1e-90 0\" radius=\"1e-90\"/>"),
+                                  "t.xml"));
+}
+
 TEST(XmlLoader, ErrorZeroScaleAndSingularTransforms) {
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">\n<scale v=\"1 0 1\"/></sphere>"),
                      "t.xml:3: error: scale: a scale factor of zero flattens the object");
