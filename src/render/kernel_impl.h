@@ -13,12 +13,28 @@ namespace pvrt {
 // Below this many rays per pixel a packet saves too little to pay for itself.
 inline constexpr size_t kMinPacket = 4;
 
-// The colour of a pixel from its rays' colours, summed in sample order: every path below
-// gives the same bits.
+// A pixel's rays' colours summed as POV-Ray sums them (TraceTask::SupersampleOnePixel):
+// each a float colour, added in sample order in float, the sum divided by the count in
+// double and stored as a float. Summed in double, a channel within a hair of a level's
+// edge lands on the other side of it.
+struct PixelSum {
+  float r = 0, g = 0, b = 0;
+  void add(const Color& c) {
+    r += float(c.r);
+    g += float(c.g);
+    b += float(c.b);
+  }
+  Color mean(size_t count) const {
+    const double n = double(count);
+    return {double(r) / n, double(g) / n, double(b) / n};
+  }
+};
+
+// The colour of a pixel from its rays' colours: every path below gives the same bits.
 inline Color pixelColor(const Color* colors, size_t count) {
-  Color sum;
-  for (size_t k = 0; k < count; ++k) sum += colors[k];
-  return count == 1 ? sum : sum * (1.0 / double(count));
+  PixelSum sum;
+  for (size_t k = 0; k < count; ++k) sum.add(colors[k]);
+  return sum.mean(count);
 }
 
 // Neighbouring pixels of a row share one packet when their rays fit in it: the tree is
@@ -61,6 +77,9 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
           first[i + 1] = first[i] + offsets.size();
         }
         stats.primaryRays += uint64_t(first[group]);
+        uint64_t starts = 0;
+        for (int i = 0; i < group; ++i) starts |= uint64_t(1) << first[i];
+        tracer.setPixelStarts(starts);
         tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
         for (int i = 0; i < group; ++i)
           image.set(x + i, y, pixelColor(colors.data() + first[i], first[i + 1] - first[i]));
@@ -79,15 +98,15 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
         }
         image.set(x, y, pixelColor(colors.data(), n));
       } else {
-        Color sum;
+        PixelSum sum;
         for (size_t first = 0; first < n; first += kMaxPacket) {
           const int count = int(std::min<size_t>(kMaxPacket, n - first));
           scene.camera.rays(x, y, offsets.data() + first, count, w, h, rays.data());
           stats.primaryRays += uint64_t(count);
           tracer.tracePacket(rays.data(), count, scene.cameraInteriors, colors.data());
-          for (int k = 0; k < count; ++k) sum += colors[k];
+          for (int k = 0; k < count; ++k) sum.add(colors[k]);
         }
-        image.set(x, y, sum * (1.0 / double(n)));
+        image.set(x, y, sum.mean(n));
       }
       if (load) load[size_t(y) * w + x] = float(stats.work() - before);
     }
