@@ -111,7 +111,11 @@ class Tracer {
       for (size_t j = 0; j < lights; ++j) resolveShadows(count, j);
     }
     for (int k = 0; k < count; ++k) {
+      // Every pixel's secondary rays start with an empty shadow cache, as when it is traced
+      // alone (shadeFour's lanes use no cache, so a pixel starting inside them resets after).
+      if (k > 0 && ((pixelStarts_ >> k) & 1)) beginPixel();
       if (k % 4 == 0 && k + 4 <= count && shadeFour(rays, k, out)) {
+        if ((pixelStarts_ >> (k + 1)) & 7) beginPixel();
         k += 3;
         continue;
       }
