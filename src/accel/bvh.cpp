@@ -44,11 +44,16 @@ class LazySlabs {
 
 }  // namespace
 
-// Visits the leaves whose boxes the ray enters before `tMax` (which the visitor may
-// shrink), nearer child first; `leaf(i)` returning true ends the walk. Then the
-// unbounded primitives. Shared by the closest-hit and the occlusion queries.
+// Visits the unbounded primitives, then the leaves whose boxes the ray enters before
+// `tMax` (which the visitor may shrink), nearer child first; `leaf(i)` returning true ends
+// the walk. Shared by the closest-hit and the occlusion queries. The unbounded ones come
+// first as in POV-Ray (its infinite objects head the bounding tree's queue): with a later
+// hit kept only when strictly nearer, a plane wins a tie with a face lying on it or an
+// edge meeting it (docs/fidelity.md).
 template <class Visit>
 void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const {
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+    if (visit(i)) return;
   if (!nodes_.empty()) {
     const FloatRaySlabs slabs(ray);
     const float tMinF = float(tMin);
@@ -123,8 +128,6 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
       at = stack[--top];
     }
   }
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
-    if (visit(i)) return;
 }
 
 bool Bvh::blocks(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests, bool& transparent,
@@ -223,9 +226,9 @@ std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates
       best = ClosestHit{*h, i};
     }
   };
-  for (uint32_t i : candidates) test(i);
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)  // first, as in traverse()
     if (!items_[i].noShadow) test(i);
+  for (uint32_t i : candidates) test(i);
   return best;
 }
 
@@ -365,6 +368,11 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
       found |= hitsChildren(n, slabs[k], tMin, best[k], unused) & candidates;
     return found;
   };
+  // The unbounded primitives first, as in traverse().
+  if (boundedCount_ < prims_.size()) {
+    for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i);
+    farthest = *std::max_element(best, best + count);
+  }
   // A leaf's primitives are tested against every ray: four rays cost one vector test,
   // about what one ray's box test would cost to rule them out.
   traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
@@ -372,7 +380,6 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
     farthest = *std::max_element(best, best + count);
     return false;
   });
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i);
   for (int k = 0; k < count; ++k) {
     if (owner[k] == kNone) out[k].reset();
     else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};

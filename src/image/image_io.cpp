@@ -33,10 +33,13 @@ Error outputError(const std::string& path, const std::string& what) {
 
 }  // namespace
 
+// POV-Ray's SRGBGammaCurve::Encode and IntEncode (base/image/colourspace.cpp, encoding.h),
+// in single precision as there: a double encoder rounds values within a hair of a level's
+// edge to the other level.
 uint8_t encodeSrgb8(double linear) {
-  const double v = std::clamp(std::isnan(linear) ? 0.0 : linear, 0.0, 1.0);
-  const double s = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-  return uint8_t(std::floor(std::clamp(s, 0.0, 1.0) * 255.0 + 0.5));
+  const float v = std::clamp(std::isnan(linear) ? 0.0f : float(linear), 0.0f, 1.0f);
+  const float s = v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  return uint8_t(std::floor(std::clamp(s, 0.0f, 1.0f) * 255.0f + 0.5f));
 }
 
 namespace {

@@ -42,12 +42,28 @@ inline void setPixel(Image& image, int x, int y, Color c, bool finite, RenderSta
   image.set(x, y, c);
 }
 
-// The colour of a pixel from its rays' colours, summed in sample order: every path below
-// gives the same bits.
+// A pixel's rays' colours summed as POV-Ray sums them (TraceTask::SupersampleOnePixel):
+// each a float colour, added in sample order in float, the sum divided by the count in
+// double and stored as a float. Summed in double, a channel within a hair of a level's
+// edge lands on the other side of it.
+struct PixelSum {
+  float r = 0, g = 0, b = 0;
+  void add(const Color& c) {
+    r += float(c.r);
+    g += float(c.g);
+    b += float(c.b);
+  }
+  Color mean(size_t count) const {
+    const double n = double(count);
+    return {double(r) / n, double(g) / n, double(b) / n};
+  }
+};
+
+// The colour of a pixel from its rays' colours: every path below gives the same bits.
 inline Color pixelColor(const Color* colors, size_t count) {
-  Color sum;
-  for (size_t k = 0; k < count; ++k) sum += colors[k];
-  return count == 1 ? sum : sum * (1.0 / double(count));
+  PixelSum sum;
+  for (size_t k = 0; k < count; ++k) sum.add(colors[k]);
+  return sum.mean(count);
 }
 
 // Neighbouring pixels of a row share one packet when their rays fit in it: the tree is
@@ -90,6 +106,9 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
           first[i + 1] = first[i] + offsets.size();
         }
         stats.primaryRays += uint64_t(first[group]);
+        uint64_t starts = 0;
+        for (int i = 0; i < group; ++i) starts |= uint64_t(1) << first[i];
+        tracer.setPixelStarts(starts);
         tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
         for (int i = 0; i < group; ++i) {
           Color* c = colors.data() + first[i];
@@ -112,7 +131,7 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
         const bool finite = finiteSamples(colors.data(), n, stats);
         setPixel(image, x, y, pixelColor(colors.data(), n), finite, stats);
       } else {
-        Color sum;
+        PixelSum sum;
         bool finite = true;
         for (size_t first = 0; first < n; first += kMaxPacket) {
           const int count = int(std::min<size_t>(kMaxPacket, n - first));
@@ -120,9 +139,9 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
           stats.primaryRays += uint64_t(count);
           tracer.tracePacket(rays.data(), count, scene.cameraInteriors, colors.data());
           finite = finiteSamples(colors.data(), size_t(count), stats) && finite;
-          for (int k = 0; k < count; ++k) sum += colors[k];
+          for (int k = 0; k < count; ++k) sum.add(colors[k]);
         }
-        setPixel(image, x, y, sum * (1.0 / double(n)), finite, stats);
+        setPixel(image, x, y, sum.mean(n), finite, stats);
       }
       if (load) load[size_t(y) * w + x] = float(stats.work() - before);
     }

@@ -14,7 +14,8 @@ double cosDegrees(double deg) { return std::cos(deg * std::numbers::pi / 180.0);
 Light buildLight(const LightDesc& d) {
   Light l;
   l.location = d.location;
-  l.color = d.color;
+  // A light's colour is a float colour in POV-Ray (LightSource::colour), as pigments are.
+  l.color = {double(float(d.color.r)), double(float(d.color.g)), double(float(d.color.b))};
   l.shadowless = d.shadowless;
   if (d.spot) {
     l.spot = true;

@@ -21,6 +21,33 @@ size_t hashOf(const Surface& s) {
   return h;
 }
 
+// POV-Ray 3.7 stores pigments, finishes and interiors in single precision (SNGL fields
+// and float colours, frame.h): every value it reads passes through a float, and so does
+// each here, so that the arithmetic starts from the same numbers (an ior of 1.33 refracts
+// as 1.3300000429153442). docs/fidelity.md lists the fields.
+double single(double v) { return double(float(v)); }
+Color single(const Color& c) { return {single(c.r), single(c.g), single(c.b)}; }
+FilterColor single(const FilterColor& c) { return {single(c.rgb), single(c.filter), single(c.transmit)}; }
+
+FinishDesc single(FinishDesc f) {
+  f.ambient = single(f.ambient);
+  f.emission = single(f.emission);
+  for (double* v : {&f.diffuse, &f.brilliance, &f.phong, &f.phongSize, &f.specular, &f.roughness, &f.metallic,
+                    &f.reflection.falloff, &f.reflection.exponent, &f.reflection.metallic})
+    *v = single(*v);
+  f.reflection.min = single(f.reflection.min);
+  f.reflection.max = single(f.reflection.max);
+  return f;
+}
+
+InteriorDesc single(InteriorDesc in) {
+  in.ior = single(in.ior);
+  in.fadeDistance = single(in.fadeDistance);
+  in.fadePower = single(in.fadePower);
+  in.fadeColor = single(in.fadeColor);
+  return in;
+}
+
 }  // namespace
 
 namespace {
@@ -38,20 +65,20 @@ Made make(const MaterialDesc& desc, const Affine& objectToWorld) {
   Material& m = made.material;
   const PigmentDesc& pd = desc.pigment;
   if (pd.checker) {
-    m.color = pd.checker->color1;
-    made.checker = Checker{pd.checker->color2, std::nullopt};
+    m.color = single(pd.checker->color1);
+    made.checker = Checker{single(pd.checker->color2), std::nullopt};
     const Affine toWorld = pd.transforms.combined().then(objectToWorld);
     if (!toWorld.isIdentity()) made.checker->worldToPattern = toWorld.inverse();
   } else {
-    m.color = pd.color;
+    m.color = single(pd.color);
   }
   auto clear = [](const FilterColor& c) { return c.filter == 0 && c.transmit == 0; };
   m.opaque = clear(m.color) && (!made.checker || clear(made.checker->color2));
 
   Surface& s = made.surface;
-  s.finish = *desc.finish;
-  s.interior = *desc.interior;
-  s.specularExponent = 1.0 / desc.finish->roughness;
+  s.finish = single(*desc.finish);
+  s.interior = single(*desc.interior);
+  s.specularExponent = single(1.0 / s.finish.roughness);  // Parse_Finish stores 1/roughness as a float
   s.reflective = !desc.finish->reflection.isZero();
   s.highlights = desc.finish->phong > 0 || desc.finish->specular > 0;
   return made;

@@ -17,6 +17,18 @@ uint64_t mix(uint64_t z) {
 }
 double unitFloat(uint64_t h) { return double(h >> 11) * 0x1.0p-53; }
 
+// POV-Ray's sub-pixel offsets for +Rn (TraceTask::SupersampleOnePixel): a loop that adds
+// the step to a running offset, so the offsets are not the exact -1/2 + (k + 1/2)/n
+// (for n = 3: -0.33333333333333337, -5.55e-17, 0.33333333333333326). The last bits decide
+// which side of a checker cell boundary a sample falls on.
+std::vector<double> povOffsets(int n) {
+  constexpr double kEpsilon = 1e-10;  // POV-Ray's EPSILON
+  const double step = 1.0 / double(n), range = 0.5 - step * 0.5;
+  std::vector<double> out;
+  for (double d = -range; d <= range + kEpsilon; d += step) out.push_back(d);
+  return out;
+}
+
 }  // namespace
 
 int perfectSquareRoot(int c) {
@@ -47,10 +59,15 @@ PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
                                        samplerName(s_.kind) + ", got " + std::to_string(c) +
                                        " (--sampler jitter takes any c)");
   }
-  if (s_.kind == SamplerKind::Pov) fixed_.push_back({0, 0});
-  if (s_.kind != SamplerKind::Pov || c > 1)
+  if (s_.kind == SamplerKind::Pov) {
+    fixed_.push_back({0, 0});
+    if (c > 1)
+      for (double dy : povOffsets(rows_))
+        for (double dx : povOffsets(cols_)) fixed_.push_back({dx, dy});
+  } else {
     for (int j = 0; j < rows_; ++j)
       for (int i = 0; i < cols_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / cols_, -0.5 + (j + 0.5) / rows_});
+  }
   count_ = int(fixed_.size());
 }
 

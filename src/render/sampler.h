@@ -1,7 +1,8 @@
 // Where the rays of one pixel go and how they are weighted (the paper's supersampling
 // coefficient c = samples per pixel).
-//   pov:    POV-Ray's +A0.0 +AM1 +Rn -J: the centre ray plus an n x n grid at offsets
-//           -1/2 + (k+1/2)/n, all n*n+1 rays weighted equally. c = n*n; c = 1 is -A.
+//   pov:    POV-Ray's +A0.0 +AM1 +Rn -J: the centre ray plus an n x n grid at POV-Ray's offsets
+//           (-1/2 + (k+1/2)/n summed up as POV-Ray does), all n*n+1 rays weighted equally.
+//           c = n*n; c = 1 is -A.
 //   grid:   an n x n grid at cell centres, equal weights (c = n*n).
 //   jitter: one random point in each cell of an n x m grid (n rows, m columns, n*m = c,
 //           n the largest divisor of c not above sqrt(c): any c >= 1, and n x n when c

@@ -96,10 +96,11 @@ class Tracer {
       const Double4 lx = splat(at.x), ly = splat(at.y), lz = splat(at.z), eps = splat(kPovEpsilon);
       pl.lit = 0;
       for (int k = 0; k < padded; k += 4) {
-        // Lane by lane the operations of length(), operator/ and dot(), in their order.
+        // Lane by lane the operations of length(), the reciprocal and dot(), in their order.
         const Double4 tx = lx - load(px_ + k), ty = ly - load(py_ + k), tz = lz - load(pz_ + k);
         const Double4 dist = lanes::sqrt(tx * tx + ty * ty + tz * tz);
-        const Double4 dx = tx / dist, dy = ty / dist, dz = tz / dist;
+        const Double4 inv = splat(1.0) / dist;  // ComputeOneWhiteLightRay: VInverseScaleEq
+        const Double4 dx = tx * inv, dy = ty * inv, dz = tz * inv;
         const Double4 nl = load(nx_ + k) * dx + load(ny_ + k) * dy + load(nz_ + k) * dz;
         const unsigned lit = less(load(pointError_ + k), dist) & lessEqual(eps, nl);
         store(pl.dirX + k, dx), store(pl.dirY + k, dy), store(pl.dirZ + k, dz), store(pl.dist + k, dist);
@@ -110,7 +111,11 @@ class Tracer {
       for (size_t j = 0; j < lights; ++j) resolveShadows(count, j);
     }
     for (int k = 0; k < count; ++k) {
+      // Every pixel's secondary rays start with an empty shadow cache, as when it is traced
+      // alone (shadeFour's lanes use no cache, so a pixel starting inside them resets after).
+      if (k > 0 && ((pixelStarts_ >> k) & 1)) beginPixel();
       if (k % 4 == 0 && k + 4 <= count && shadeFour(rays, k, out)) {
+        if ((pixelStarts_ >> (k + 1)) & 7) beginPixel();
         k += 3;
         continue;
       }
@@ -123,11 +128,15 @@ class Tracer {
       out[k] = shadeAt(rays[k], hits[k]->primitive, hits[k]->hit, points_[k], normals_[k],
                        1, 1.0, inside);
     }
+    pixelStarts_ = 1;
   }
 
   // Forgets the shadow cache; called at every pixel so that the work counted for a
   // pixel never depends on which pixel the thread rendered before it.
   void beginPixel() { std::fill(shadowCache_.begin(), shadowCache_.end(), kNoCache); }
+  // Bit k set where ray k of the next tracePacket() starts a pixel (by default only ray 0):
+  // the shadow cache is kept within a pixel.
+  void setPixelStarts(uint64_t bits) { pixelStarts_ = bits; }
 
  private:
   // `level` is the level this hit runs at: 1 for the primary ray's hit.
@@ -193,8 +202,10 @@ class Tracer {
           ++stats_.reflectedRays;
           Color c = trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
           if (f.reflection.exponent != 1) {
-            const double e = 1.0 / f.reflection.exponent;
-            c = {std::pow(std::max(c.r, 0.0), e), std::pow(std::max(c.g, 0.0), e), std::pow(std::max(c.b, 0.0), e)};
+            // Reflect_Exp is the float 1/exponent, raised to on the float colour as it is: a
+            // negative channel gives pow()'s answer (NaN unless the power is whole), not 0.
+            const float e = float(1.0 / f.reflection.exponent);
+            c = {std::pow(float(c.r), e), std::pow(float(c.g), e), std::pow(float(c.b), e)};
           }
           result += rho * c;
         }
@@ -382,7 +393,9 @@ class Tracer {
           for (int i = 0; i < 4; ++i)
             if (pl.occlusion[k0 + i] == uint8_t(Occlusion::Blocked)) gives &= ~(1u << i);
           // A clear segment leaves the intensity as it is (times 1): nothing when that is dark.
-          if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) gives = 0;
+          if (std::fabs(intensity.r) < kPovEpsilon && std::fabs(intensity.g) < kPovEpsilon &&
+              std::fabs(intensity.b) < kPovEpsilon)
+            gives = 0;
         }
       }
       Double4 cr = zero, cg = zero, cb = zero;
@@ -447,18 +460,25 @@ class Tracer {
   bool bufferServes(double shift) const { return shift <= 0.5 * LightBuffer::kMargin * scene_.tol.shadow; }
   static double bufferReach(double dist, double shift) { return (dist + shift) * (1 + 1e-9); }
 
-  static Vec3 mirror(const Vec3& d, const Vec3& n) { return normalize(d - n * (2.0 * dot(d, n))); }
+  // ComputeReflection: d + n * (-2 d.n), normalised by VNormalizeEq (times 1/length).
+  static Vec3 mirror(const Vec3& d, const Vec3& n) {
+    const Vec3 r = d + n * (-2.0 * dot(d, n));
+    return r * (1.0 / length(r));
+  }
 
   double iorOf(uint32_t object) const { return scene_.materials.surface(scene_.materials[object]).interior.ior; }
 
   // n_to / n_from at the surface of `object`, for the fresnel reflectivity. POV-Ray's
   // ComputeRelativeIOR: when leaving an object that is nested in another it divides the
   // innermost interior's ior by the object's own, which gives 1; we match that.
+  // Interior::IOR is a float in POV-Ray, so the ratio of two objects' iors is a float
+  // division; with the atmosphere's (a double 1.0) it is a double one.
+  static double iorRatio(double a, double b) { return double(float(a) / float(b)); }
   double fresnelIor(uint32_t object, const InteriorList& inside) const {
     if (inside.count == 0) return iorOf(object) / 1.0;
     const double back = iorOf(inside.ids[inside.count - 1]);
-    if (inside.find(object) >= 0) return inside.count == 1 ? 1.0 / iorOf(object) : back / iorOf(object);
-    return iorOf(object) / back;
+    if (inside.find(object) >= 0) return inside.count == 1 ? 1.0 / iorOf(object) : iorRatio(back, iorOf(object));
+    return iorRatio(iorOf(object), back);
   }
 
   // n_from / n_to for a ray refracted at the surface of `object`, as POV-Ray's
@@ -468,9 +488,9 @@ class Tracer {
     if (inside.count == 0) return 1.0 / iorOf(object);
     const uint32_t back = inside.ids[inside.count - 1];
     if (back == object)
-      return inside.count == 1 ? iorOf(object) / 1.0 : iorOf(object) / iorOf(inside.ids[inside.count - 2]);
+      return inside.count == 1 ? iorOf(object) / 1.0 : iorRatio(iorOf(object), iorOf(inside.ids[inside.count - 2]));
     if (inside.find(object) >= 0) return 1.0;
-    return iorOf(back) / iorOf(object);
+    return iorRatio(iorOf(back), iorOf(object));
   }
 
   // Light leaving an object through this surface has crossed its interior for `depth`;
@@ -542,14 +562,13 @@ class Tracer {
     if (buffer && scene_.packetShadowsFromBuffers) {
       for (uint64_t b = live & served_; b != 0; b &= b - 1) {
         const int k = __builtin_ctzll(b);
-        uint32_t blocker = 0;
         pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
             *buffer, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
-            bufferReach(pl.dist[k], shadowShift_[k]), stats_.intersectionTests, blocker));
+            bufferReach(pl.dist[k], shadowShift_[k]), stats_.intersectionTests, blocker_[k]));
       }
       live &= ~served_;
     }
-    if (live == 0) return;
+    if (live == 0) return applyShadowCache(count, pl);
     // The segments segmentTransmittance() would trace, in the rays' own lanes: the others'
     // origins are NaN, which the packet's bounds leave out, and they end before they start.
     // Beside them, the range of their directions and the farthest reach from the light, for
@@ -595,6 +614,28 @@ class Tracer {
       const int k = __builtin_ctzll(b);
       pl.occlusion[k] = uint8_t(occlusion_[k]);
     }
+    applyShadowCache(count, pl);
+  }
+
+  // POV-Ray's shadow cache among the rays of one pixel, in sample order: a ray whose segment
+  // the full test left open tries the opaque object that last blocked this light for an
+  // earlier ray of its pixel, as segmentTransmittance() does. (Across pixels POV-Ray's cache
+  // depends on the order its threads took the tiles; pvrt starts every pixel empty.)
+  void applyShadowCache(int count, PacketLight& pl) {
+    uint32_t cached = kNoCache;
+    for (int k = 0; k < count; ++k) {
+      if ((pixelStarts_ >> k) & 1) cached = kNoCache;
+      if (!((pl.lit >> k) & 1)) continue;
+      if (Occlusion(pl.occlusion[k]) == Occlusion::Blocked) {
+        cached = blocker_[k];
+        continue;
+      }
+      if (cached == kNoCache) continue;
+      ++stats_.intersectionTests;
+      if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
+                               scene_.tol.minDepth, pl.dist[k]))
+        pl.occlusion[k] = uint8_t(Occlusion::Blocked);
+    }
   }
 
   // How far each hit's shadow origin lies from its point (length(), lane by lane), and in
@@ -628,7 +669,7 @@ class Tracer {
       const Vec3 toLight = light.location - p;
       dist = length(toLight);
       if (!(dist > length(sp.error))) return {};  // a light at the point itself has no direction
-      l = toLight / dist;
+      l = toLight * (1.0 / dist);  // POV-Ray's VInverseScaleEq: times the reciprocal
     }
     Color intensity = light.color;
     if constexpr ((E & kLightShaping) != 0) {
@@ -641,7 +682,11 @@ class Tracer {
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
         intensity = intensity * shadowFactor(light, sp, n, l, dist, inside, known ? known->occlusion : kUnknown);
-        if (intensity.r < kPovEpsilon && intensity.g < kPovEpsilon && intensity.b < kPovEpsilon) return {};
+        // POV-Ray's test is on the absolute values: a negative light (or a negative transmit
+        // on the way) still shines, darkening what it lights.
+        if (std::fabs(intensity.r) < kPovEpsilon && std::fabs(intensity.g) < kPovEpsilon &&
+            std::fabs(intensity.b) < kPovEpsilon)
+          return {};
       }
     }
     const FinishDesc& f = s.finish;
@@ -657,7 +702,8 @@ class Tracer {
         if (f.specular > 0) h += shading::specular(f, s.specularExponent, ray.dir, n, l);
         if (h > 0) {
           Color hc = intensity * h;
-          if (f.metallic != 0) hc *= shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pig.rgb);
+          // Only a positive metallic tints (ComputeSpecularColour: Metallic > 0).
+          if (f.metallic > 0) hc *= shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pig.rgb);
           c += hc;
         }
       }
@@ -718,8 +764,11 @@ class Tracer {
     const double tol = scene_.tol.shadow;
     uint32_t& cached = shadowCache_[cacheSlot_];
     if (cached != kNoCache) {
+      // TracePointLightShadowRay tries the cached object over [MIN_ISECT_DEPTH, depth),
+      // not the full test's (SHADOW_TOLERANCE, depth - SHADOW_TOLERANCE): in a crease it
+      // still finds the wall that the full test passes over.
       ++stats_.intersectionTests;
-      if (scene_.bvh.intersect(cached, segment, tol, dist - tol)) return {};
+      if (scene_.bvh.intersect(cached, segment, scene_.tol.minDepth, dist)) return {};
     }
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
@@ -862,6 +911,7 @@ class Tracer {
   alignas(32) double segmentEnd_[kMaxPacket];
   Occlusion occlusion_[kMaxPacket];
   uint32_t blocker_[kMaxPacket];
+  uint64_t pixelStarts_ = 1;
   std::vector<PacketLight> known_;  // one per light
   std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
   bool pointCells_ = false;          // whether cells_ are those of the point shadeAt's light loop shades

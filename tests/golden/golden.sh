@@ -40,7 +40,7 @@ render)
   [ "$variant" = noaa ] && ref=$root/reference/$scene.noaa.png
   spp=$((depth > 0 ? depth * depth : 1))
   # Per-scene thresholds, only with a written reason (reference/tolerances.tsv).
-  levels=2 fraction=0.0001
+  levels=2 fraction=0
   line=$(awk -F'\t' -v s="$scene" 'NR > 1 && $1 == s { print $2 "\t" $3; exit }' "$root/reference/tolerances.tsv")
   [ -n "$line" ] && IFS=$'\t' read -r levels fraction <<<"$line"
   out=$build/golden-out/$scene.$variant.$backend.png

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace pvrt {
@@ -24,6 +25,24 @@ TEST(Camera, PixelCentresAndRowsFromTheTop) {
   const Camera cam{CameraDesc{}};
   const Ray r = cam.ray(0, 0, 0, 0, 4, 2);  // u = (0.5)/4 - 0.5, v = 0.5 - 0.5/2
   expectNear(r.dir, normalize(Vec3{1.33 * (0.125 - 0.5), 0.25, 1}));
+}
+
+// CreateCameraRay's operations, in its order: x + 0.5 over the width, the row counted from
+// the bottom as ((height - 1) - (y - 0.5)) / height, and the direction times 1/length.
+TEST(Camera, SampleArithmeticIsPovRaysBitForBit) {
+  CameraDesc desc;
+  desc.location = {0, 10, 0};
+  desc.right = {0.05, 0, 0};
+  const Camera cam{desc};
+  const double dy = 0.33333333333333326;
+  const Ray r = cam.ray(7, 50, 0, dy, 160, 100);
+  const double x0 = (7.0 + 0.5) / 160 - 0.5;
+  const double y0 = (99.0 - ((50.0 + dy) - 0.5)) / 100 - 0.5;
+  const Vec3 d{0.05 * x0, y0, 1.0};
+  const double inv = 1.0 / std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  EXPECT_EQ(r.dir.x, d.x * inv);
+  EXPECT_EQ(r.dir.y, d.y * inv);
+  EXPECT_EQ(r.dir.z, d.z * inv);
 }
 
 // The packet path computes four rays at a time; every one must be bit for bit the ray

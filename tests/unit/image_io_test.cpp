@@ -16,6 +16,20 @@
 namespace pvrt {
 namespace {
 
+// POV-Ray 3.7 encodes in single precision (SRGBGammaCurve::Encode, IntEncode): these linear
+// values lie within a hair of a level's edge, and POV-Ray 3.7.0.10 wrote the level given here
+// for each (rendered as a background colour, 1x1, -A); the double-precision encoder pvrt had
+// gives the level above or below for every one of them.
+TEST(ImageIo, EncoderIsPovRaysSinglePrecisionOne) {
+  const struct {
+    float linear;
+    int level;
+  } povray[] = {{0.00197292538f, 7}, {0.00350925932f, 12}, {0.00384831498f, 12}, {0.00497683743f, 15},
+                {0.00582465064f, 18}, {0.00627796911f, 19}, {0.00675122719f, 20}, {0.00724466797f, 21},
+                {0.00775852986f, 22}, {0.00829304755f, 23}};
+  for (const auto& p : povray) EXPECT_EQ(encodeSrgb8(double(p.linear)), p.level) << p.linear;
+}
+
 // The table-driven image encoder must give exactly what the per-value formula gives.
 TEST(ImageIo, TableEncodingMatchesFormula) {
   std::mt19937 rng(7);

@@ -23,8 +23,24 @@ TEST(Sampler, PovR3IsCentrePlusThreeByThreeGrid) {
   ASSERT_EQ(o.size(), 10u);
   EXPECT_EQ(s.count(), 10);
   EXPECT_DOUBLE_EQ(o[1].dx, -1.0 / 3);
-  EXPECT_DOUBLE_EQ(o[2].dx, 0.0);
+  EXPECT_NEAR(o[2].dx, 0.0, 1e-16);  // POV-Ray's running sum reaches -5.55e-17 there
   EXPECT_DOUBLE_EQ(o[9].dy, 1.0 / 3);
+}
+
+// POV-Ray's SupersampleOnePixel adds the step to a running offset; the offsets it reaches
+// are not -1/3, 0, 1/3 in their last bits, and a sample row on a checker cell boundary
+// goes the way those bits say (issue 26 item 1).
+TEST(Sampler, PovOffsetsAreTheAccumulatedOnesBitForBit) {
+  PixelSampler s({SamplerKind::Pov, 9, 0});
+  std::vector<SubSample> o;
+  s.offsets(0, 0, o);
+  ASSERT_EQ(o.size(), 10u);
+  const double want[3] = {-0.33333333333333337, -5.551115123125783e-17, 0.33333333333333326};
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(o[1 + 3 * j + i].dx, want[i]) << i << "," << j;
+      EXPECT_EQ(o[1 + 3 * j + i].dy, want[j]) << i << "," << j;
+    }
 }
 
 TEST(Sampler, GridHasNoCentreRay) {
