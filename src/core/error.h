@@ -14,7 +14,8 @@ enum class ExitCode : int {
   Usage = 2,       // bad command line
   SceneError = 3,  // the scene file could not be read or is invalid
   OutputError = 4, // the image could not be written
-  Interrupted = 130,
+  Interrupted = 130,  // SIGINT (128 + 2)
+  Terminated = 143,   // SIGTERM (128 + 15)
   Internal = 70,
 };
 
