@@ -78,9 +78,13 @@ one_run() {  # one_run WHAT: run, signal, check
   if ! kill -0 $pid 2>/dev/null; then echo "$what: pvrt ended before the signal:"; cat "$err"; fail=1; return; fi
   local t0=$(date +%s%N)
   kill -"$sig" $pid
-  wait $pid
-  local rc=$? ms=$((($(date +%s%N) - t0) / 1000000))
+  # Until pvrt is gone (`wait` would also wait for the pipe's writer), then its status.
+  local n=0
+  while kill -0 $pid 2>/dev/null && [ $n -lt 3000 ]; do sleep 0.005; n=$((n + 1)); done
+  local ms=$((($(date +%s%N) - t0) / 1000000))
   [ -f "$work/writer.pid" ] && kill "$(cat "$work/writer.pid")" 2>/dev/null && rm -f "$work/writer.pid"
+  wait $pid
+  local rc=$?
   local want=130
   [ "$sig" = TERM ] && want=143
   if [ "$sig" = KILL ]; then
