@@ -21,6 +21,7 @@
 #include "accel/bvh.h"
 #include "core/lanes.h"
 #include "core/prefault.h"
+#include "core/interrupt.h"
 #include "parallel/parallel_for.h"
 #include "parallel/permute.h"
 
@@ -534,7 +535,8 @@ class Builder {
         if (mid == begin || mid == end) mid = begin + count / 2;
       }
     }
-    if (mid == end) {
+    // Once a signal is caught the tree is thrown away (Bvh::Bvh): its subtrees end at once.
+    if (mid == end || interrupt::requested()) {
       nodes_[self] = {bounds, begin, count};
       return;
     }
@@ -757,6 +759,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
     RawArray<BuildNode> binary(2 * items.size() - 1);
     Builder builder(items, binary, threads);
     const uint32_t made = builder.build();
+    interrupt::check();
     nodes_.reserve(made / 2 + 1);  // a wide node takes at least one of the binary interior ones
     Collapser(binary.begin(), builder.shared(), threads).collapse(nodes_, stats_);
   }

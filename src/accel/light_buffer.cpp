@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/interrupt.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -16,6 +17,15 @@ namespace {
 
 constexpr double kInf = INFINITY;
 constexpr size_t kGrain = 2048;  // the fewest primitives of a block of the build
+// The cells' offsets cost 4 bytes each whether a cell lists anything or not: only the cells
+// where the scene may be seen get one (LightBuffer::Window), and at most this many a
+// primitive, so that a light far from a few primitives costs about what its entries do. 100
+// spheres and 10^4 far lights: 864 KB a light before (256 x 256 cells on each face).
+constexpr size_t kCellsPerPrimitive = 64;
+// The lights of a batch of the build: enough that a batch holds about this many (light,
+// primitive) pairs, so that 10^5 lights among 100 primitives still keep every thread busy,
+// few enough that a batch's temporaries stay small next to the buffers.
+constexpr size_t kBatchPairs = size_t(1) << 22;
 
 struct Range {
   double lo, hi;
@@ -194,12 +204,12 @@ class CellCones {
 // Calls visit(cell index) for each cell where a primitive may be seen: within its box's
 // footprint on a face and, if it has one, its ball's cone.
 template <class F>
-void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& cones, int res, F&& visit) {
+void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& cones, F&& visit) {
   for (int face = 0; face < 6; ++face) {
     if (!f[face].any) continue;
     for (int j = f[face].j0; j <= f[face].j1; ++j)
       for (int i = f[face].i0; i <= f[face].i1; ++i)
-        if (!cone.any || cones.meets(cone, face, i, j)) visit((face * res + j) * res + i);
+        if (!cone.any || cones.meets(cone, face, i, j)) visit(face, i, j);
   }
 }
 
@@ -208,10 +218,29 @@ void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& con
 LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads)
     : LightBuffer(std::move(build({&light, 1}, occluders, threads)[0])) {}
 
+// Batches of lights in order. A batch may hold what is left of the budget: each of its
+// lights gets an equal share for its cells and its listings, and a light whose listings
+// outgrow its share gets no buffer. What the batch keeps is then taken off the budget.
+std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
+                                            int threads, size_t memoryBytes) {
+  std::vector<LightBuffer> out(lights.size());
+  const size_t batch = std::max<size_t>(1, kBatchPairs / std::max<size_t>(1, occluders.size()));
+  size_t left = memoryBytes;
+  for (size_t first = 0; first < lights.size() && !interrupt::requested(); first += batch) {
+    const size_t n = std::min(batch, lights.size() - first);
+    std::vector<LightBuffer> built = buildBatch(lights.subspan(first, n), occluders, threads, left / n);
+    for (size_t k = 0; k < n; ++k) {
+      left -= std::min(left, built[k].bytes());
+      out[first + k] = std::move(built[k]);
+    }
+  }
+  return out;
+}
+
 // All the lights' buffers at once, each step one parallel loop over the lights' blocks of
 // primitives or cells: a scene has fewer lights than a machine has threads.
-std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
-                                            int threads) {
+std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
+                                                 int threads, size_t shareBytes) {
   const size_t count = lights.size();
   std::vector<LightBuffer> out(count);
   const Blocks blocks(occluders.size(), threads, kGrain);
@@ -240,6 +269,30 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
     out[l].light_ = lights[l];
     out[l].res_ = resolutionFor(all);
   });
+  // Each light's windows: the footprint of the box around every primitive on each face (a
+  // primitive's box lies inside it, its footprint inside the window). Then the resolution is
+  // lowered, if need be, until the windows hold at most kCellsPerPrimitive cells a primitive.
+  Bounds scene;
+  for (const Occluder& o : occluders) scene.extend(o.box);
+  const size_t mostCells = std::max<size_t>(6 * 8 * 8, kCellsPerPrimitive * occluders.size());
+  parallelIndices(count, threads, [&](size_t l) {
+    LightBuffer& b = out[l];
+    const RelativeBox box(scene, lights[l]);
+    for (;;) {
+      uint32_t base = 0;
+      for (int face = 0; face < 6; ++face) {
+        Footprint f;
+        if (box.holdsLight()) f = {0, b.res_ - 1, 0, b.res_ - 1, true};
+        else if (!scene.empty()) f = footprint(box, face, b.res_);
+        b.windows_[face] = f.any ? Window{f.i0, f.j0, f.i1 - f.i0 + 1, f.j1 - f.j0 + 1, base} : Window{0, 0, 0, 0, base};
+        base += uint32_t(f.cells());
+      }
+      b.emptyCell_ = int(base);
+      if (base <= mostCells || b.res_ <= 8) break;
+      // A multiple of 8, so that the lights share few resolutions (each has its CellCones).
+      b.res_ = std::max(8, int(double(b.res_) * std::sqrt(double(mostCells) / double(base))) / 8 * 8);
+    }
+  });
   std::vector<std::unique_ptr<CellCones>> cones;  // one for each resolution the lights have
   std::vector<const CellCones*> conesOf(count);
   for (size_t l = 0; l < count; ++l) {
@@ -258,7 +311,50 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
     std::vector<Listing> listings;
     std::vector<uint32_t> everywhere;
   };
-  const size_t budget = kEntriesPerPrimitive * occluders.size() + 65536;
+  // Each light's entries: at most kEntriesPerPrimitive a primitive (`usual`), and what its
+  // share of the memory leaves beside its cells. When a share is short of that, each light's
+  // entries are counted first (a second pass over the footprints, only then), and the
+  // batch's memory goes to its lights in order, each taking what it needs while that fits:
+  // the lights left without a buffer are the last ones, whatever the number of threads.
+  const size_t usual = kEntriesPerPrimitive * occluders.size() + 65536;
+  const auto cellBytes = [&](size_t l) { return (size_t(out[l].emptyCell_) + 2) * kBuildBytesPerCell; };
+  std::vector<size_t> budget(count);
+  std::vector<char> overLimit(count, 0);
+  bool tight = false;
+  for (size_t l = 0; l < count; ++l) {
+    budget[l] = std::min(usual, shareBytes > cellBytes(l) ? (shareBytes - cellBytes(l)) / kBuildBytesPerEntry : 0);
+    tight = tight || budget[l] < usual;
+  }
+  if (tight) {
+    std::vector<size_t> counted(pieces.size(), 0);
+    parallelIndices(pieces.size(), threads, [&](size_t p) {
+      const size_t l = pieces[p].light;
+      for (size_t i = blocks.begin(pieces[p].block); i < blocks.end(pieces[p].block) && counted[p] <= usual; ++i) {
+        if (occluders[i].box.empty()) continue;
+        const RelativeBox box(occluders[i].box, lights[l]);
+        Footprint f[6];
+        int cellsSeen = 0;
+        for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, out[l].res_)).cells();
+        if (box.holdsLight() || cellsSeen > kCrowded) continue;
+        forEachCell(f, coneOf(occluders[i], lights[l]), *conesOf[l], [&](int, int, int) { ++counted[p]; });
+      }
+    });
+    size_t left = shareBytes * count;
+    for (size_t l = 0; l < count; ++l) {
+      size_t n = 0;
+      for (size_t b = 0; b < blocks.count; ++b) n += counted[l * blocks.count + b];
+      const size_t need = cellBytes(l) + std::min(n, usual + 1) * kBuildBytesPerEntry;
+      if (n > usual) {
+        budget[l] = 0;  // too many entries: no buffer, as without a limit
+      } else if (need <= left) {
+        budget[l] = n;
+        left -= need;
+      } else {
+        budget[l] = 0;
+        overLimit[l] = 1;
+      }
+    }
+  }
   std::vector<Part> parts(pieces.size());
   std::vector<std::atomic<size_t>> listed(count);  // by a light's blocks done so far
   parallelIndices(pieces.size(), threads, [&](size_t p) {
@@ -266,6 +362,7 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
     const Vec3& light = lights[l];
     const int res = out[l].res_;
     Part& part = parts[p];
+    if (budget[l] == 0) return;  // not even its cells fit
     part.listings.reserve(2 * (blocks.end(pieces[p].block) - blocks.begin(pieces[p].block)));
     for (size_t i = blocks.begin(pieces[p].block); i < blocks.end(pieces[p].block); ++i) {
       if (occluders[i].box.empty()) continue;
@@ -278,10 +375,12 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
         continue;
       }
       const Entry e{roundDown(box.distance()), uint32_t(i)};
-      forEachCell(f, coneOf(occluders[i], light), *conesOf[l], res,
-                  [&](int c) { part.listings.push_back({uint32_t(c), e}); });
+      const LightBuffer& buffer = out[l];
+      forEachCell(f, coneOf(occluders[i], light), *conesOf[l],
+                  [&](int face, int ci, int cj) { part.listings.push_back({uint32_t(buffer.cellIndex(face, ci, cj)), e}); });
       // No buffer (below) once the budget is spent: no need to list the rest.
-      if (part.listings.size() > budget || listed[l].load(std::memory_order_relaxed) > budget) break;
+      if (part.listings.size() > budget[l] || listed[l].load(std::memory_order_relaxed) > budget[l]) break;
+      if ((i & 1023) == 0 && interrupt::requested()) break;  // the buffers are thrown away
     }
     listed[l] += part.listings.size();
   });
@@ -292,13 +391,15 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
       const std::vector<uint32_t>& e = parts[l * blocks.count + b].everywhere;
       buffer.everywhere_.insert(buffer.everywhere_.end(), e.begin(), e.end());
     }
-    if (buffer.everywhere_.size() > kMaxEverywhere || listed[l] > budget) {
+    buffer.overMemoryLimit_ = overLimit[l] || (!tight && budget[l] < usual && (budget[l] == 0 || listed[l] > budget[l]));
+    if (buffer.everywhere_.size() > kMaxEverywhere || listed[l] > budget[l] || budget[l] == 0 ||
+        interrupt::requested()) {
       // Too many primitives too big for cells: the BVH answers this light's segments better.
       buffer.everywhere_.clear();
       for (size_t b = 0; b < blocks.count; ++b) std::vector<Listing>().swap(parts[l * blocks.count + b].listings);
       continue;
     }
-    cells[l] = 6 * size_t(buffer.res_) * buffer.res_;
+    cells[l] = size_t(buffer.emptyCell_) + 1;
   }
   // Each cell's entries in the order the blocks happen to put them there, then sorted: the
   // lists are the same whatever that order. The cells' counts, then cursors, are updated

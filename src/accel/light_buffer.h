@@ -50,12 +50,22 @@ class LightBuffer {
   // `occluders[i]` is primitive i, for the first occluders.size() (bounded) primitives. Built
   // by up to `threads` threads (0: threadBudget()); the buffer is the same whatever the number.
   LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads = 0);
-  // The buffers of several lights, built together: buffer k is LightBuffer(lights[k], occluders).
+  // The buffers of several lights, built together: buffer k is LightBuffer(lights[k], occluders),
+  // or an invalid one for the lights that do not fit in `memoryBytes`. The lights are built a
+  // batch at a time, in order, and the build's own temporaries count too: it never holds more
+  // than memoryBytes, and the lights left without a buffer are the last ones (their segments
+  // walk the BVH: the same answers). The same buffers whatever the number of threads. Stops
+  // early, leaving the rest invalid, once a signal is caught (core/interrupt.h).
   static std::vector<LightBuffer> build(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
-                                        int threads = 0);
+                                        int threads = 0, size_t memoryBytes = SIZE_MAX);
+  // What the build of one light may hold at once per entry (its listing, 12 bytes, and the
+  // entry itself) and per cell (its count and its offset).
+  static constexpr size_t kBuildBytesPerEntry = 20, kBuildBytesPerCell = 8;
 
-  // Whether the buffer was built (see kMaxEverywhere).
+  // Whether the buffer was built (see kMaxEverywhere and build's memory limit).
   bool valid() const { return !offsets_.empty(); }
+  // Whether it was left out to stay within build's memory limit.
+  bool overMemoryLimit() const { return overMemoryLimit_; }
   const Vec3& light() const { return light_; }
   // The primitives that may lie along direction `fromLight` (any length), nearest first;
   // false for a zero or non-finite direction, which has no cell.
@@ -85,19 +95,40 @@ class LightBuffer {
   std::span<const uint32_t> everywhere() const { return everywhere_; }
 
   int resolution() const { return res_; }
+  // The cells that have a list (list(0) .. list(cells() - 1)): those of the faces' windows
+  // and the one empty cell that stands for every other.
+  size_t cells() const { return offsets_.empty() ? 0 : offsets_.size() - 1; }
   size_t entries() const { return entries_.size(); }
   size_t bytes() const {
     return entries_.size() * sizeof(Entry) + offsets_.size() * sizeof(uint32_t) + everywhere_.size() * 4;
   }
 
  private:
-  int cellIndex(int face, int i, int j) const { return (face * res_ + j) * res_ + i; }
+  // The cells of a face that may list anything: those where the box around all the
+  // primitives may be seen. Only they have offsets; every other cell is the one empty cell.
+  struct Window {
+    int i0 = 0, j0 = 0, width = 0, height = 0;
+    uint32_t base = 0;  // its first cell's index
+  };
+  int cellIndex(int face, int i, int j) const {
+    const Window& w = windows_[face];
+    const unsigned di = unsigned(i - w.i0), dj = unsigned(j - w.j0);
+    if (di >= unsigned(w.width) || dj >= unsigned(w.height)) return emptyCell_;
+    return int(w.base + dj * unsigned(w.width) + di);
+  }
+  // One batch of build(): each light's listings stop (and the light gets no buffer) beyond
+  // `entryCap` entries.
+  static std::vector<LightBuffer> buildBatch(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
+                                             int threads, size_t entryCap);
 
   Vec3 light_;
   int res_ = 1;                    // cells along each side of a face
-  std::vector<uint32_t> offsets_;  // 6 * res^2 + 1: where each cell's entries start
+  Window windows_[6];
+  int emptyCell_ = 0;              // the last cell, which lists nothing
+  std::vector<uint32_t> offsets_;  // the windows' cells + the empty one + 1: where each cell's entries start
   std::vector<Entry> entries_;
   std::vector<uint32_t> everywhere_;
+  bool overMemoryLimit_ = false;
 };
 
 }  // namespace pvrt

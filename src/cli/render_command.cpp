@@ -1,9 +1,7 @@
 // `pvrt render SCENE -o OUT`: the paper's "input, output, optional saved configuration".
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <csignal>
 #include <chrono>
 #include <cctype>
 #include <cerrno>
@@ -20,6 +18,8 @@
 #include "cli/progress.h"
 #include "core/output_files.h"
 #include "core/error.h"
+#include "core/interrupt.h"
+#include "core/memory_limit.h"
 #include "image/image_io.h"
 #include "parallel/cluster.h"
 #include "parallel/threads.h"
@@ -34,23 +34,8 @@ namespace pvrt::cli {
 
 namespace {
 
-// Ctrl-C and SIGTERM stop the render at the next tile; nothing is written and pvrt exits
-// with 130. A second signal ends the process at once (still with 130; an image being
-// written then leaves its temporary file, as SIGKILL does).
-std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) {
-  if (gInterrupted.exchange(true)) {
-    removeStagedFilesNow();  // no temporary is left behind, even by the second signal
-    _exit(int(ExitCode::Interrupted));
-  }
-}
-void catchInterrupts() {
-  struct sigaction sa {};
-  sa.sa_handler = onInterrupt;
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
+// Ctrl-C and SIGTERM stop every stage within a fraction of a second (core/interrupt.h);
+// nothing is written and pvrt exits with 130 (SIGINT) or 143 (SIGTERM).
 // Under mpirun a rank ends at once on SIGINT, SIGTERM (what mpirun sends its ranks when it is
 // interrupted) or SIGUSR1 (which mpirun forwards): rank 0 removes its temporaries and says
 // so, and every rank exits with 130, which mpirun passes on as its own exit code when the
@@ -78,13 +63,13 @@ void catchMpiInterrupts(int rank) {
   for (int sig : {SIGINT, SIGTERM, SIGUSR1}) sigaction(sig, &sa, nullptr);
 }
 int interrupted() {
-  std::fprintf(stderr, "pvrt: interrupted; nothing was written\n");
-  return int(ExitCode::Interrupted);
+  std::fprintf(stderr, "%s\n", interrupt::error().what());
+  return int(interrupt::exitCode());
 }
 
 struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
-  std::string gatherName = "gather", loadMap;
+  std::string gatherName = "gather", loadMap, memoryLimit;
   bool masterRenders = true;
   double mpiTimeout = 30;  // seconds a rank of the node may be stopped before the job ends
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
@@ -158,8 +143,13 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
     cells = std::max(cells, lb.resolution());
   }
   if (buffers > 0)
-    fmt::print("  Light buffers         {} (up to {}x{} cells a face), {} entries, {:.1f} KiB, built in {:.4f} s\n",
-               buffers, cells, cells, entries, double(bytes) / 1024.0, scene.lightBufferSeconds);
+    fmt::print("  Light buffers         {} (up to {}x{} cells a face), {} entries, {:.1f} KiB ({:.0f} bytes a "
+               "buffer), built in {:.4f} s\n",
+               buffers, cells, cells, entries, double(bytes) / 1024.0, double(bytes) / double(buffers),
+               scene.lightBufferSeconds);
+  if (scene.lightsOverMemoryLimit > 0)
+    fmt::print("  Memory limit          {}: {} light(s) left without a buffer\n", formatBytes(scene.memoryLimit),
+               scene.lightsOverMemoryLimit);
   fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", loadS,
              buildS, r.seconds, writeS);
   fmt::print("  Rays per second       {:.0f}\n", r.seconds > 0 ? double(t.totalRays()) / r.seconds : 0.0);
@@ -268,6 +258,8 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   if (o.hasTimeBudget && o.backendName == "mpi")
     throw Error(ExitCode::Usage, "--time-budget is not available with --backend mpi");
   if (o.threads > 0) setThreadBudget(o.threads);  // every stage, not only the render
+  BuildOptions build;
+  if (!o.memoryLimit.empty()) build.memoryLimit = parseMemorySize(o.memoryLimit);
   Prepared p;
   const auto t0 = Clock::now();
   p.desc = loadSceneFile(o.scene);
@@ -298,27 +290,47 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   if (o.chunk > 0) s.schedule.chunk = o.chunk;
   s.schedule.tileSize = o.tileSize;
   s.loadMap = !o.loadMap.empty();
-  s.cancel = &gInterrupted;
   if (!o.saveScene.empty() && writes) {  // kept until the image is done: nothing on disk before
     SceneDesc copy = p.desc;
     copy.image = ImageDesc{s.width, s.height, {}};
     p.savedScene = sceneToXml(copy);
   }
   const auto t1 = Clock::now();
-  p.scene = buildScene(std::move(p.desc));  // frees the objects' descriptions early
+  p.scene = buildScene(std::move(p.desc), build);  // frees the objects' descriptions early
   p.buildS = since(t1);
   p.buildPeak = peakResidentBytes();
   return p;
 }
 
+// "3.2 hours", "12 minutes", "40 seconds".
+std::string roughly(double seconds) {
+  if (seconds >= 2 * 86400) return fmt::format("{:.1f} days", seconds / 86400);
+  if (seconds >= 2 * 3600) return fmt::format("{:.1f} hours", seconds / 3600);
+  if (seconds >= 120) return fmt::format("{:.0f} minutes", seconds / 60);
+  return fmt::format("{:.0f} seconds", seconds);
+}
+
+// A render predicted to take an hour or more says so on stderr, once, even with --quiet
+// (PVRT_ANNOUNCE_SECONDS, for tests, sets another threshold).
+void announceLongRenders(RenderSettings& s) {
+  if (const char* v = std::getenv("PVRT_ANNOUNCE_SECONDS"); v && std::atof(v) > 0) s.announceSeconds = std::atof(v);
+  s.announce = [](const LongRender& r) {
+    const std::string what = r.atLeast ? "at least " + roughly(r.predictedSeconds)
+                                       : "about " + roughly(r.predictedSeconds);
+    std::fprintf(stderr, "\npvrt: this render will take %s (%.1f%% of the pixels done in %s); Ctrl-C stops it\n",
+                 what.c_str(), 100 * r.shareDone, roughly(r.elapsedSeconds).c_str());
+  };
+}
+
 int runLocal(const RenderOptions& o) {
   const auto start = Clock::now();
-  // Caught from the start, so an interrupt while a big scene loads also exits with 130.
-  catchInterrupts();
+  // Caught from the start: an interrupt while a big scene loads or builds ends it too. A
+  // second signal ends the process at once, removing the temporaries first.
+  interrupt::install(removeStagedFilesNow);
   OutputFiles out;
   planOutputs(o, out);
   Prepared p = prepare(o, true);
-  if (gInterrupted) return interrupted();
+  if (interrupt::requested()) return interrupted();
   if (o.hasTimeBudget) {
     const BudgetPlan plan = planForBudget(p.scene, p.settings, o.timeBudget);
     p.settings.sampler.samplesPerPixel = plan.samplesPerPixel;
@@ -329,12 +341,13 @@ int runLocal(const RenderOptions& o) {
                  plan.secondsPerSample, plan.samplesPerPixel, plan.predictedSeconds,
                  plan.fits ? "" : ", over the budget even at c=1");
   }
+  announceLongRenders(p.settings);
   const RenderSettings& s = p.settings;
   ProgressBar bar(!o.quiet);
   p.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
   const RenderResult r = render(p.scene, s);
   bar.finish();
-  if (r.cancelled || gInterrupted) return interrupted();
+  if (r.cancelled || interrupt::requested()) return interrupted();
   // From here on an interrupt lets the (atomic) write finish: the image is complete.
   const auto t2 = Clock::now();
   stageImage(out, o.output, r.image);
@@ -481,6 +494,9 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--load-map", o->loadMap,
                 "Write the work per pixel to PREFIX.exr (counts) and PREFIX.png (log-scale false colour)");
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");
+  c->add_option("--memory-limit", o->memoryLimit,
+                "Memory for the acceleration structures, e.g. 2G or 512M (default: a quarter of the machine's "
+                "memory); lights beyond it go without a light buffer (the same image, rendered slower)");
   c->add_flag("--stats", o->stats, "Print render statistics (rays by kind, tests, effects, time)");
   c->add_flag("-q,--quiet", o->quiet, "No progress bar or summary line");
   return [o, budget] {

@@ -14,8 +14,9 @@ enum class ExitCode : int {
   Usage = 2,       // bad command line
   SceneError = 3,  // the scene file could not be read or is invalid
   OutputError = 4, // the image could not be written
-  Stalled = 75,    // MPI: a rank was stopped for longer than --mpi-timeout (cluster::startWatchdog)
-  Interrupted = 130,
+  Stalled = 75,       // MPI: a rank was stopped for longer than --mpi-timeout (cluster::startWatchdog)
+  Interrupted = 130,  // SIGINT (128 + 2)
+  Terminated = 143,   // SIGTERM (128 + 15)
   Internal = 70,
 };
 

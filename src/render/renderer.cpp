@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 
+#include "core/interrupt.h"
 #include "render/kernel.h"
 
 namespace pvrt {
@@ -12,6 +16,48 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+// Predicts the render's time each second (LongRender) and announces it once, when it is
+// at least settings.announceSeconds. Stopped and joined when the render ends.
+class Watchdog {
+ public:
+  Watchdog(const RenderSettings& s, const std::atomic<long>& done, long total, size_t tiles, int workers,
+           Clock::time_point t0) {
+    if (!s.announce) return;
+    thread_ = std::thread([=, &s, &done, this] {
+      std::unique_lock<std::mutex> lock(mutex_);
+      while (!stop_) {
+        wake_.wait_for(lock, std::chrono::seconds(1));
+        if (stop_) return;
+        LongRender r;
+        r.elapsedSeconds = secondsSince(t0);
+        r.shareDone = double(done.load()) / double(total);
+        r.atLeast = r.shareDone == 0;
+        r.predictedSeconds = r.atLeast ? r.elapsedSeconds * double(tiles) / double(std::max(workers, 1))
+                                       : r.elapsedSeconds / r.shareDone;
+        if (r.predictedSeconds >= s.announceSeconds) {
+          s.announce(r);
+          return;
+        }
+      }
+    });
+  }
+  ~Watchdog() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
 }  // namespace
 
 void renderRect(const Scene& scene, const PixelSampler& sampler, EffectSet effects, const WorkItem& rect,
@@ -37,8 +83,9 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   std::atomic<long> done{0};
   std::atomic<bool> cancelled{false};
   const long total = long(settings.width) * settings.height;
+  Watchdog watchdog(settings, done, total, plan.items.size(), workers, t0);
   parallelFor(settings.backend, workers, plan, [&](size_t i, int worker) {
-    if (settings.cancel && settings.cancel->load(std::memory_order_relaxed)) {
+    if (interrupt::requested()) {
       cancelled = true;
       return;
     }

@@ -24,8 +24,20 @@ struct RenderSettings {
   bool loadMap = false;  // record the work of every pixel
   // Called now and then from one worker with the pixels finished so far; may be empty.
   std::function<void(long done, long total)> progress;
-  // Set from a signal handler to stop a render early (the result is then incomplete).
-  const std::atomic<bool>* cancel = nullptr;
+  // Called at most once, from a watchdog thread, when the render is predicted to take at
+  // least announceSeconds in all (see LongRender); may be empty.
+  std::function<void(const struct LongRender&)> announce;
+  double announceSeconds = 3600;
+};
+
+// A prediction of a render's wall time, made each second from the pixels finished so far:
+// elapsed / (share done), or, before any tile is done, at least elapsed x (tiles / workers)
+// (each worker's first tile has taken that long already).
+struct LongRender {
+  double predictedSeconds = 0;
+  bool atLeast = false;  // a lower bound: no tile was finished yet
+  double elapsedSeconds = 0;
+  double shareDone = 0;  // of the pixels
 };
 
 // Aligned to a cache line: workers update their own counters per ray.
@@ -42,7 +54,7 @@ struct RenderResult {
   std::vector<WorkerStats> workers;
   EffectSet effects = 0;  // the kernel's effects (plus supersampling)
   double seconds = 0;
-  bool cancelled = false;
+  bool cancelled = false;  // by a signal (core/interrupt.h): the image is incomplete
 };
 
 RenderResult render(const Scene& scene, const RenderSettings& settings);

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/prefault.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
@@ -202,7 +203,7 @@ EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
 }
 
 // buildScene's body; `release`, when given, is desc.objects, freed once read.
-Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
+Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const BuildOptions& options) {
   Scene s;
   s.camera = Camera(desc.camera);
   s.globals = desc.globals;
@@ -259,15 +260,17 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release) {
   });
   s.effects = deriveEffects(s, desc);
   if (release) std::vector<ObjectDesc>().swap(*release);
+  interrupt::check();
   s.bvh = Bvh(std::move(prims));
-  buildLightBuffers(s);
+  buildLightBuffers(s, options.memoryLimit);
+  interrupt::check();
   return s;
 }
 
 }  // namespace
 
-Scene buildScene(const SceneDesc& desc) { return build(desc, nullptr); }
-Scene buildScene(SceneDesc&& desc) { return build(desc, &desc.objects); }
+Scene buildScene(const SceneDesc& desc, const BuildOptions& options) { return build(desc, nullptr, options); }
+Scene buildScene(SceneDesc&& desc, const BuildOptions& options) { return build(desc, &desc.objects, options); }
 
 // From how many bounded primitives a packet's shadow segments are answered from the light
 // buffers one by one, rather than together (from one buffer cell when they all lie in one,
@@ -279,9 +282,11 @@ Scene buildScene(SceneDesc&& desc) { return build(desc, &desc.objects); }
 // cells, with the tree alone, the even point was 10^3.)
 constexpr size_t kPacketShadowsFromBuffers = 4000;
 
-void buildLightBuffers(Scene& s) {
+void buildLightBuffers(Scene& s, size_t memoryLimit) {
   const auto start = std::chrono::steady_clock::now();
   s.lightBuffers.assign(s.lights.size(), LightBuffer{});
+  s.memoryLimit = memoryLimit;
+  s.lightsOverMemoryLimit = 0;
   if ((s.effects & kShadows) == 0) return;
   std::vector<size_t> which;
   for (size_t j = 0; j < s.lights.size(); ++j)
@@ -290,8 +295,13 @@ void buildLightBuffers(Scene& s) {
   const std::vector<LightBuffer::Occluder> occluders = s.bvh.occluders();
   std::vector<Vec3> locations;
   for (size_t j : which) locations.push_back(s.lights[j].location);
-  std::vector<LightBuffer> built = LightBuffer::build(locations, occluders);
-  for (size_t k = 0; k < which.size(); ++k) s.lightBuffers[which[k]] = std::move(built[k]);
+  const size_t bvhBytes = s.bvh.stats().bytes + occluders.size() * sizeof(LightBuffer::Occluder);
+  const size_t left = memoryLimit > bvhBytes ? memoryLimit - bvhBytes : 0;
+  std::vector<LightBuffer> built = LightBuffer::build(locations, occluders, 0, left);
+  for (size_t k = 0; k < which.size(); ++k) {
+    s.lightsOverMemoryLimit += built[k].overMemoryLimit();
+    s.lightBuffers[which[k]] = std::move(built[k]);
+  }
   size_t bytes = 0;
   for (const LightBuffer& b : s.lightBuffers) bytes += b.bytes();
   s.prefetchLightBuffers = bytes > (size_t(16) << 20);

@@ -2,9 +2,11 @@
 // shared read-only by every thread (and rebuilt identically on every MPI rank).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "accel/bvh.h"
+#include "core/memory_limit.h"
 #include "render/camera.h"
 #include "render/effects.h"
 #include "render/light.h"
@@ -46,6 +48,10 @@ struct Scene {
   // shadows; an empty one (resolution() 1, no cells) otherwise.
   std::vector<LightBuffer> lightBuffers;
   double lightBufferSeconds = 0;
+  // The memory limit the acceleration structures were built under (BuildOptions), and how
+  // many lights that would have had a buffer went without, to stay within it.
+  size_t memoryLimit = SIZE_MAX;
+  size_t lightsOverMemoryLimit = 0;
   // Whether the buffers are too big for the caches, so that shading should start fetching
   // a point's cells for all lights at once (it costs more than it saves on small ones).
   bool prefetchLightBuffers = false;
@@ -59,13 +65,22 @@ struct Scene {
   RayTolerances tol;             // minimum depths and maximum distance, in the scene's unit
 };
 
-Scene buildScene(const SceneDesc& desc);
+struct BuildOptions {
+  // Bytes the BVH and the light buffers may take together (core/memory_limit.h): the BVH is
+  // always built; the light buffers take what it leaves, in light order, and the lights
+  // beyond it get none (their shadow segments walk the BVH: the same image bits).
+  size_t memoryLimit = defaultMemoryLimit();
+};
+
+// Both throw interrupt::error() when a signal is caught (core/interrupt.h) while building.
+Scene buildScene(const SceneDesc& desc, const BuildOptions& options = {});
 // The same scene, with desc.objects freed as soon as the primitives and materials are made
 // from them, before the BVH and the light buffers are built: a scene of a million objects
 // then never holds both its descriptions (0.7 GB) and its acceleration structures. The
 // rest of desc is left as it was.
-Scene buildScene(SceneDesc&& desc);
-// Builds scene.lightBuffers for its lights and primitives (buildScene does it).
-void buildLightBuffers(Scene& scene);
+Scene buildScene(SceneDesc&& desc, const BuildOptions& options = {});
+// Builds scene.lightBuffers for its lights and primitives (buildScene does it), within
+// memoryLimit less the BVH's bytes.
+void buildLightBuffers(Scene& scene, size_t memoryLimit = SIZE_MAX);
 
 }  // namespace pvrt

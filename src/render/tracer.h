@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/interrupt.h"
 #include "core/lanes.h"
 #include "render/effects.h"
 #include "render/scene.h"
@@ -42,9 +43,17 @@ class Tracer {
  public:
   Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
 
+  // A spawned ray's weight as POV-Ray passes it to TraceRay: a float (COLC), compared with
+  // adc_bailout (a double) on entry. Rounded here, before the comparison, so that a weight
+  // on the edge of the bailout takes POV-Ray's side of it.
+  static double rayWeight(double w) { return double(float(w)); }
+
   // Colour seen along a unit-direction ray that enters at trace `level` with `weight`;
   // a camera ray unless `spawned` (then it starts on a surface, render/spawn.h).
   Color trace(const Ray& ray, int level, double weight, const InteriorList& inside, bool spawned = false) {
+    // A deep trace (max_trace_level 256 among glass) may take hours a pixel: once a signal is
+    // caught every tree is cut short, and the image is thrown away.
+    if (spawned && interrupt::requested()) return {};
     const double tMin = spawned ? scene_.tol.minDepth : scene_.tol.primaryMinDepth;
     const auto found = scene_.bvh.closest(ray, tMin, scene_.tol.maxDistance, stats_.intersectionTests);
     if (!found) return scene_.background;
@@ -195,9 +204,9 @@ class Tracer {
     }
     if constexpr ((E & kReflection) != 0) {
       if (s.reflective && !totalInternal) {
-        const double w = weight * (f.reflection.fresnel ? rho.maxComponent()
-                                                          : std::max(f.reflection.max.maxComponent(),
-                                                                     f.reflection.min.maxComponent()));
+        const double w = rayWeight(weight * (f.reflection.fresnel ? rho.maxComponent()
+                                                                    : std::max(f.reflection.max.maxComponent(),
+                                                                               f.reflection.min.maxComponent())));
         if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
           ++stats_.reflectedRays;
           Color c = trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
@@ -503,7 +512,7 @@ class Tracer {
       filter *= Color(std::min(1.0, 1.0 - rho.r), std::min(1.0, 1.0 - rho.g), std::min(1.0, 1.0 - rho.b));
     const double tau = std::min(1.0, std::fabs(shading::grey(filter)));
     if (tau <= scene_.globals.adcBailout) return {};
-    const double w = weight * std::max({std::fabs(filter.r), std::fabs(filter.g), std::fabs(filter.b)});
+    const double w = rayWeight(weight * std::max({std::fabs(filter.r), std::fabs(filter.g), std::fabs(filter.b)}));
     if (w < scene_.globals.adcBailout) return {};
 
     InteriorList next = inside;

@@ -1,6 +1,7 @@
 #include "scene/xml_document.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <tinyxml2.h>
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -57,6 +59,13 @@ std::string readSceneBytes(const std::string& path) {
   if (S_ISREG(st.st_mode) && st.st_size > 0) bytes.reserve(std::min<size_t>(size_t(st.st_size), kMaxSceneBytes) + 1);
   char buf[1 << 16];
   for (;;) {
+    // A pipe may wait for its writer for ever: it is read only once poll() says there is
+    // something, waiting at most 50 ms at a time, so that a signal ends the wait.
+    interrupt::check();
+    if (S_ISFIFO(st.st_mode)) {
+      pollfd p{f.fd, POLLIN, 0};
+      if (::poll(&p, 1, 50) <= 0) continue;  // timed out, or a signal (EINTR)
+    }
     const ssize_t n = ::read(f.fd, buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw fail(std::strerror(errno));

@@ -17,6 +17,7 @@
 #include <variant>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/prefault.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
@@ -383,6 +384,7 @@ class Loader {
 
   // One child of the root.
   void element(const XMLElement* e) {
+    interrupt::check();  // a million elements take seconds
     noText(e);
     const std::string name = e->Name();
     // Read ahead, the checks that depend on earlier elements wait for settle().

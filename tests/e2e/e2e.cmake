@@ -106,13 +106,22 @@ pvrt_expect_error(unknown_schedule 2 "unknown schedule" ARGS render ${PVRT_PAPER
 # The output cannot be written: exit code 4.
 pvrt_expect_error(output_dir_missing 4 "no such directory" ABSENT nope ARGS render ${PVRT_PAPER1} -o <DIR>/nope/out.png)
 
-# Interrupted renders: Ctrl-C (SIGINT) and SIGTERM exit with 130 within 2 s and write nothing;
-# SIGKILL writes nothing either (interrupt.sh).
+# Interrupted renders: Ctrl-C (SIGINT) and SIGTERM exit with 130 and 143 within 0.5 s and write
+# nothing; SIGKILL writes nothing either (interrupt.sh). Then each other long stage: a scene
+# read from a pipe that never ends, the BVH build, the light-buffer build, a deep trace.
 foreach(sig INT TERM KILL)
   add_test(NAME e2e.interrupt.${sig}
     COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/interrupt.sh ${sig} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
             ${PVRT_E2E_DIR}/interrupt/${sig})
   set_tests_properties(e2e.interrupt.${sig} PROPERTIES LABELS e2e TIMEOUT 120)
+endforeach()
+foreach(stage pipe bvh buffers trace)
+  foreach(sig INT TERM)
+    add_test(NAME e2e.interrupt.${stage}.${sig}
+      COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/interrupt.sh ${sig} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
+              ${PVRT_E2E_DIR}/interrupt/${stage}-${sig} ${stage})
+    set_tests_properties(e2e.interrupt.${stage}.${sig} PROPERTIES LABELS e2e TIMEOUT 180 RUN_SERIAL TRUE)
+  endforeach()
 endforeach()
 
 # `pvrt accuracy`: the settings asked for, and the readings with exact answers.
@@ -249,3 +258,9 @@ pvrt_expect_error(generate_negative_palette 2 "--palette weights must not be neg
 add_test(NAME e2e.generate.extremes_load
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/generate_extremes.sh $<TARGET_FILE:pvrt> ${PVRT_E2E_DIR}/generate-extremes)
 set_tests_properties(e2e.generate.extremes_load PROPERTIES LABELS e2e)
+
+# max_trace_level 256 among glass: adc_bailout bounds the tree as in POV-Ray, and an endless
+# one is announced with an estimate and stops at once on Ctrl-C (deep_trace.sh).
+add_test(NAME e2e.deep_trace
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/deep_trace.sh $<TARGET_FILE:pvrt> ${PVRT_E2E_DIR}/deep_trace)
+set_tests_properties(e2e.deep_trace PROPERTIES LABELS e2e TIMEOUT 180)

@@ -14,6 +14,7 @@
 #include "accel/bvh.h"
 #include "accel/light_buffer.h"
 #include "accel/packet_rays.h"
+#include "generate/random_scene.h"
 #include "geometry/primitive.h"
 #include "random_geometry.h"
 #include "render/renderer.h"
@@ -334,7 +335,8 @@ void expectSameBuffer(const LightBuffer& a, const LightBuffer& b, const std::str
   ASSERT_EQ(a.valid(), b.valid()) << what;
   ASSERT_EQ(a.resolution(), b.resolution()) << what;
   ASSERT_EQ(a.entries(), b.entries()) << what;
-  for (int c = 0; a.valid() && c < 6 * a.resolution() * a.resolution(); ++c) {
+  ASSERT_EQ(a.cells(), b.cells()) << what;
+  for (int c = 0; a.valid() && c < int(a.cells()); ++c) {
     const auto x = a.list(c), y = b.list(c);
     ASSERT_EQ(x.size(), y.size()) << "cell " << c << ", " << what;
     for (size_t e = 0; e < x.size(); ++e) {
@@ -505,6 +507,78 @@ TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
   }
   EXPECT_GT(scenes, 40);
   EXPECT_GT(buffered, 40);
+}
+
+// A memory limit leaves the last lights without a buffer, never more than the limit, and
+// never a different image: generated spheres and 40 lights, built under limits from nothing
+// to plenty, rendered at one ray a pixel and at 9, against the scene built without a limit.
+TEST(LightBuffer, AMemoryLimitLeavesLightsOutButNotAPixel) {
+  GenerateOptions g;
+  g.spheres = 2000;
+  g.lights = 40;
+  const SceneDesc desc = generateScene(g);
+  const Scene full = buildScene(desc, {SIZE_MAX});
+  size_t fullBytes = 0;
+  for (const LightBuffer& lb : full.lightBuffers) {
+    EXPECT_TRUE(lb.valid());
+    fullBytes += lb.bytes();
+  }
+  const size_t bvh = full.bvh.stats().bytes + full.bvh.occluders().size() * sizeof(LightBuffer::Occluder);
+  RenderSettings s;
+  s.width = 48;
+  s.height = 30;
+  std::vector<Image::Pixels> images;
+  for (int spp : {1, 9}) {
+    s.sampler.samplesPerPixel = spp;
+    images.push_back(render(full, s).image.data());
+  }
+  size_t previous = 0;
+  // The build holds up to 20 bytes an entry (LightBuffer::kBuildBytesPerEntry) where the
+  // buffer keeps 8: three times the buffers' bytes let every light have one.
+  for (size_t limit : {size_t(0), bvh, bvh + fullBytes / 4, bvh + fullBytes, bvh + 3 * fullBytes + (1u << 20)}) {
+    const Scene limited = buildScene(desc, {limit});
+    size_t bytes = 0, valid = 0;
+    bool gap = false;  // the lights with a buffer come first
+    for (const LightBuffer& lb : limited.lightBuffers) {
+      bytes += lb.bytes();
+      valid += lb.valid();
+      EXPECT_EQ(lb.overMemoryLimit(), !lb.valid()) << "limit " << limit;
+      if (!lb.valid()) gap = true;
+      else EXPECT_FALSE(gap) << "limit " << limit;
+    }
+    EXPECT_LE(bytes + bvh, std::max(limit, bvh)) << "limit " << limit;
+    EXPECT_EQ(limited.lightsOverMemoryLimit, limited.lights.size() - valid);
+    EXPECT_GE(valid, previous) << "limit " << limit;  // more memory, never fewer buffers
+    previous = valid;
+    if (limit <= bvh) EXPECT_EQ(valid, 0u);
+    if (limit > bvh + 3 * fullBytes) EXPECT_EQ(valid, limited.lights.size());
+    if (limit > bvh && limit < bvh + fullBytes) EXPECT_LT(valid, limited.lights.size());
+    for (int k = 0; k < 2; ++k) {
+      s.sampler.samplesPerPixel = k == 0 ? 1 : 9;
+      EXPECT_EQ(render(limited, s).image.data(), images[size_t(k)]) << "limit " << limit << " spp " << s.sampler.samplesPerPixel;
+    }
+  }
+  EXPECT_GT(previous, 0u);
+}
+
+// A light among few primitives costs about what its entries do: 100 spheres seen from lights
+// far away (each sphere a speck, which asks for the finest cells) take under 16 KB a light,
+// where the 256 x 256 cells a face of before took 1.5 MB.
+TEST(LightBuffer, AFarLightAmongFewPrimitivesIsSmall) {
+  GenerateOptions g;
+  g.spheres = 100;
+  g.lights = 0;
+  SceneDesc desc = generateScene(g);
+  for (int i = 0; i < 50; ++i) {
+    LightDesc l;
+    l.location = {300.0 * std::cos(i), 200.0 + i, 300.0 * std::sin(i)};
+    desc.lights.push_back(l);
+  }
+  const Scene scene = buildScene(desc);
+  for (const LightBuffer& lb : scene.lightBuffers) {
+    ASSERT_TRUE(lb.valid());
+    EXPECT_LT(lb.bytes(), 16u << 10) << lb.resolution() << " cells a side, " << lb.entries() << " entries";
+  }
 }
 
 }  // namespace
