@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
