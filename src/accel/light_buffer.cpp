@@ -25,7 +25,7 @@ constexpr size_t kCellsPerPrimitive = 64;
 // The lights of a batch of the build: enough that a batch holds about this many (light,
 // primitive) pairs, so that 10^5 lights among 100 primitives still keep every thread busy,
 // few enough that a batch's temporaries stay small next to the buffers.
-constexpr size_t kBatchPairs = size_t(1) << 22;
+constexpr size_t kBatchPairs = size_t(1) << 20;
 
 struct Range {
   double lo, hi;
