@@ -9,7 +9,4 @@ namespace pvrt {
 // The most resident memory this process has held so far (getrusage's maximum RSS), in bytes.
 size_t peakResidentBytes();
 
-// The resident memory it holds now (/proc/self/statm), in bytes; 0 where unknown.
-size_t residentBytes();
-
 }  // namespace pvrt
