@@ -172,29 +172,36 @@ BinSplit cheapest(const Bins& bins, const Binning& binning) {
   BinSplit best;
   for (int axis = 0; axis < 3; ++axis) {
     if (!binning.binned(axis)) continue;
-    std::array<Bounds, kBins> binBounds;
-    for (int b = 0; b < kBins; ++b) binBounds[size_t(b)] = bins.box[size_t(axis)][size_t(b)].bounds();
     const auto& binCount = bins.count[size_t(axis)];
+    // Only the bins that hold items: an empty bin changes neither side's box nor its count,
+    // so the split just after it costs exactly what the split before it costs, and never
+    // wins (only a strictly cheaper split replaces the best). Deep in the tree most of a
+    // node's bins are empty.
+    std::array<int, kBins> used;
+    int m = 0;
+    for (int b = 0; b < kBins; ++b)
+      if (binCount[size_t(b)] > 0) used[size_t(m++)] = b;
+    if (m < 2) continue;
+    std::array<Bounds, kBins> binBounds;
+    for (int k = 0; k < m; ++k) binBounds[size_t(k)] = bins.box[size_t(axis)][size_t(used[size_t(k)])].bounds();
     // Sweep from the right to get the cost of every right side, then from the left.
     std::array<double, kBins> rightArea{};
     std::array<uint32_t, kBins> rightCount{};
     Bounds acc;
     uint32_t n = 0;
-    for (int b = kBins - 1; b > 0; --b) {
-      acc.extend(binBounds[size_t(b)]);
-      n += binCount[size_t(b)];
-      rightArea[size_t(b)] = acc.surfaceArea();
-      rightCount[size_t(b)] = n;
+    for (int k = m - 1; k > 0; --k) {
+      acc.extend(binBounds[size_t(k)]);
+      n += binCount[size_t(used[size_t(k)])];
+      rightArea[size_t(k)] = acc.surfaceArea();
+      rightCount[size_t(k)] = n;
     }
     acc = Bounds{};
     n = 0;
-    for (int b = 0; b < kBins - 1; ++b) {
-      acc.extend(binBounds[size_t(b)]);
-      n += binCount[size_t(b)];
-      const uint32_t right = rightCount[size_t(b + 1)];
-      if (n == 0 || right == 0) continue;
-      const double cost = acc.surfaceArea() * n + rightArea[size_t(b + 1)] * right;
-      if (cost < best.cost) best = {axis, b, cost};
+    for (int k = 0; k < m - 1; ++k) {
+      acc.extend(binBounds[size_t(k)]);
+      n += binCount[size_t(used[size_t(k)])];
+      const double cost = acc.surfaceArea() * n + rightArea[size_t(k + 1)] * rightCount[size_t(k + 1)];
+      if (cost < best.cost) best = {axis, used[size_t(k)], cost};
     }
   }
   return best;
