@@ -149,7 +149,8 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
                buffers, cells, cells, entries, double(bytes) / 1024.0, double(bytes) / double(buffers),
                scene.lightBufferSeconds);
   if (scene.lightsOverMemoryLimit > 0)
-    fmt::print("  Memory limit          {}: {} light(s) left without a buffer\n", formatBytes(scene.memoryLimit),
+    fmt::print("  Memory limit          {}{}: {} light(s) left without a buffer\n", formatBytes(scene.memoryLimit),
+               scene.memoryLimitScaled ? " (the BVH and 4 times it for light buffers; --memory-limit sets it)" : "",
                scene.lightsOverMemoryLimit);
   fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", loadS,
              buildS, r.seconds, writeS);
@@ -260,7 +261,10 @@ Prepared prepare(const RenderOptions& o, bool writes) {
     throw Error(ExitCode::Usage, "--time-budget is not available with --backend mpi");
   if (o.threads > 0) setThreadBudget(o.threads);  // every stage, not only the render
   BuildOptions build;
-  if (!o.memoryLimit.empty()) build.memoryLimit = parseMemorySize(o.memoryLimit);
+  if (!o.memoryLimit.empty()) {
+    build.memoryLimit = parseMemorySize(o.memoryLimit);
+    build.memoryLimitGiven = true;
+  }
   Prepared p;
   const auto t0 = Clock::now();
   p.desc = loadSceneFile(o.scene);
@@ -497,7 +501,8 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");
   c->add_option("--memory-limit", o->memoryLimit,
                 "Memory for the acceleration structures, e.g. 2G or 512M (default: a quarter of the machine's "
-                "memory); lights beyond it go without a light buffer (the same image, rendered slower)");
+                "memory, and for light buffers at most 4 times the BVH's, at least 64M); lights beyond it go "
+                "without a light buffer (the same image, rendered slower or faster)");
   c->add_flag("--stats", o->stats, "Print render statistics (rays by kind, tests, effects, time)");
   c->add_flag("-q,--quiet", o->quiet, "No progress bar or summary line");
   return [o, budget] {

@@ -1,6 +1,8 @@
 // The memory that pvrt's optional acceleration structures may take (`--memory-limit`): the
 // BVH is always built, and what it leaves of the limit goes to the light buffers; lights that
-// do not fit go without one, which changes the work done, never the image.
+// do not fit go without one, which changes the work done, never the image. Without
+// --memory-limit the light buffers also take at most a share that grows with the scene
+// (render/scene.h, lightBufferBudget).
 #pragma once
 
 #include <cstddef>

@@ -273,7 +273,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   interrupt::check();
   std::vector<double>().swap(objectSizes);
   s.bvh = Bvh(std::move(store));
-  buildLightBuffers(s, options.memoryLimit);
+  buildLightBuffers(s, options.memoryLimit, !options.memoryLimitGiven);
   interrupt::check();
   return s;
 }
@@ -293,10 +293,11 @@ Scene buildScene(SceneDesc&& desc, const BuildOptions& options) { return build(d
 // cells, with the tree alone, the even point was 10^3.)
 constexpr size_t kPacketShadowsFromBuffers = 4000;
 
-void buildLightBuffers(Scene& s, size_t memoryLimit) {
+void buildLightBuffers(Scene& s, size_t memoryLimit, bool scaled) {
   const auto start = std::chrono::steady_clock::now();
   s.lightBuffers.assign(s.lights.size(), LightBuffer{});
   s.memoryLimit = memoryLimit;
+  s.memoryLimitScaled = false;
   s.lightsOverMemoryLimit = 0;
   if ((s.effects & kShadows) == 0) return;
   std::vector<size_t> which;
@@ -307,6 +308,10 @@ void buildLightBuffers(Scene& s, size_t memoryLimit) {
   std::vector<Vec3> locations;
   for (size_t j : which) locations.push_back(s.lights[j].location);
   const size_t bvhBytes = s.bvh.stats().bytes + occluders.size() * sizeof(LightBuffer::Occluder);
+  if (scaled && bvhBytes + lightBufferBudget(bvhBytes) < memoryLimit) {
+    s.memoryLimit = memoryLimit = bvhBytes + lightBufferBudget(bvhBytes);
+    s.memoryLimitScaled = true;
+  }
   const size_t left = memoryLimit > bvhBytes ? memoryLimit - bvhBytes : 0;
   std::vector<LightBuffer> built = LightBuffer::build(locations, occluders, 0, left);
   for (size_t k = 0; k < which.size(); ++k) {

@@ -517,7 +517,7 @@ TEST(LightBuffer, AMemoryLimitLeavesLightsOutButNotAPixel) {
   g.spheres = 2000;
   g.lights = 40;
   const SceneDesc desc = generateScene(g);
-  const Scene full = buildScene(desc, {SIZE_MAX});
+  const Scene full = buildScene(desc, {SIZE_MAX, true});
   size_t fullBytes = 0;
   for (const LightBuffer& lb : full.lightBuffers) {
     EXPECT_TRUE(lb.valid());
@@ -536,7 +536,7 @@ TEST(LightBuffer, AMemoryLimitLeavesLightsOutButNotAPixel) {
   // The build holds up to 20 bytes an entry (LightBuffer::kBuildBytesPerEntry) where the
   // buffer keeps 8: three times the buffers' bytes let every light have one.
   for (size_t limit : {size_t(0), bvh, bvh + fullBytes / 4, bvh + fullBytes, bvh + 3 * fullBytes + (1u << 20)}) {
-    const Scene limited = buildScene(desc, {limit});
+    const Scene limited = buildScene(desc, {limit, true});
     size_t bytes = 0, valid = 0;
     bool gap = false;  // the lights with a buffer come first
     for (const LightBuffer& lb : limited.lightBuffers) {
@@ -579,6 +579,38 @@ TEST(LightBuffer, AFarLightAmongFewPrimitivesIsSmall) {
     ASSERT_TRUE(lb.valid());
     EXPECT_LT(lb.bytes(), 16u << 10) << lb.resolution() << " cells a side, " << lb.entries() << " entries";
   }
+}
+
+// Without --memory-limit the light buffers take at most 4 times the BVH's bytes (at least
+// 64 MiB), so that their memory and build time grow with the scene, not with the scene times
+// its lights; a limit given replaces that.
+TEST(LightBuffer, ByDefaultTheirBudgetGrowsWithTheScene) {
+  EXPECT_EQ(lightBufferBudget(0), kLightBufferFloor);
+  EXPECT_EQ(lightBufferBudget(kLightBufferFloor / kLightBufferShare), kLightBufferFloor);
+  EXPECT_EQ(lightBufferBudget(size_t(100) << 20), kLightBufferShare * (size_t(100) << 20));
+  GenerateOptions g;
+  g.spheres = 2000;
+  g.lights = 12;
+  const SceneDesc desc = generateScene(g);
+  Scene scene = buildScene(desc, {SIZE_MAX, true});
+  ASSERT_FALSE(scene.memoryLimitScaled);
+  EXPECT_EQ(scene.memoryLimit, SIZE_MAX);
+  const size_t bvh = scene.bvh.stats().bytes + scene.bvh.occluders().size() * sizeof(LightBuffer::Occluder);
+  for (const size_t limit : {SIZE_MAX, bvh + lightBufferBudget(bvh) + 1, bvh + lightBufferBudget(bvh) / 2}) {
+    buildLightBuffers(scene, limit, true);
+    EXPECT_EQ(scene.memoryLimit, std::min(limit, bvh + lightBufferBudget(bvh))) << limit;
+    EXPECT_EQ(scene.memoryLimitScaled, limit > bvh + lightBufferBudget(bvh)) << limit;
+    size_t bytes = 0;
+    for (const LightBuffer& lb : scene.lightBuffers) {
+      EXPECT_TRUE(lb.valid());  // a small scene's buffers fit in the floor
+      bytes += lb.bytes();
+    }
+    EXPECT_LE(bytes, lightBufferBudget(bvh));
+  }
+  // buildScene without memoryLimitGiven is the scaled build.
+  const Scene byDefault = buildScene(desc, {SIZE_MAX, false});
+  EXPECT_TRUE(byDefault.memoryLimitScaled);
+  EXPECT_EQ(byDefault.memoryLimit, bvh + lightBufferBudget(bvh));
 }
 
 }  // namespace
