@@ -105,20 +105,21 @@ int blessGolden(GoldenOptions o) {
   bool renderFailed = false;
   for (const Outcome& x : outcomes) {
     const ManifestEntry* e = planned.manifest.find(x.scene, x.variant);
+    const std::string name = x.scene + "." + x.variant;
     const bool existed = e && fs::exists(planned.referencePath(*e));
     if (x.image.empty()) {
-      fmt::print("{}: {}\n", x.name, x.message);
+      fmt::print("{}: {}\n", name, x.message);
       renderFailed = true;
       continue;
     }
     const CompareResult& r = x.stats;
-    if (!existed) fmt::print("{}: new reference ({} x {})\n", x.name, e->width, e->height);
+    if (!existed) fmt::print("{}: new reference ({} x {})\n", name, e->width, e->height);
     else if (x.compared && !r.sizeMismatch && r.over0 == 0) {
-      fmt::print("{}: unchanged (identical to {})\n", x.name, x.reference);
+      fmt::print("{}: unchanged (identical to {})\n", name, x.reference);
       continue;
-    } else if (r.sizeMismatch) fmt::print("{}: changes: the size differs from {}\n", x.name, x.reference);
+    } else if (r.sizeMismatch) fmt::print("{}: changes: the size differs from {}\n", name, x.reference);
     else
-      fmt::print("{}: changes: {} of {} channels differ, max {} levels at ({}, {}), {} by more than 1\n", x.name,
+      fmt::print("{}: changes: {} of {} channels differ, max {} levels at ({}, {}), {} by more than 1\n", name,
                  r.over0, r.channels, r.maxError, r.maxX, r.maxY, r.over1);
     changed.push_back(*e);
     changedOutcomes.push_back(x);
@@ -133,7 +134,7 @@ int blessGolden(GoldenOptions o) {
     return 1;
   }
   if (changed.empty()) {
-    fmt::print("nothing to bless: every reference is pvrt's render already\n");
+    fmt::print("nothing to bless: pvrt's renders are the references' pixels already\n");
     return 0;
   }
   if (!o.yes) {

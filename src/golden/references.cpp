@@ -59,7 +59,7 @@ std::vector<ManifestEntry> plannedEntries(const Suite& suite, const std::string&
   std::vector<ManifestEntry> planned;
   for (const ManifestEntry& e : suite.manifest.entries)
     if (e.scene == scene && (variant.empty() || e.variant == variant)) planned.push_back(e);
-  if (planned.empty()) {  // a new entry: the test width, the scene's aspect ratio
+  if (planned.empty()) {  // a new entry: the scene's other references' size, or the test width and its aspect
     const SceneDesc desc = loadSceneFile(suite.scenePath(scene));
     const ImageDesc image = desc.image.value_or(ImageDesc{});
     ManifestEntry e;
@@ -67,6 +67,12 @@ std::vector<ManifestEntry> plannedEntries(const Suite& suite, const std::string&
     e.variant = variant.empty() ? "aa" : variant;
     e.width = width;
     e.height = std::max(1, int((long(width) * image.height + image.width / 2) / image.width));
+    for (const ManifestEntry& other : suite.manifest.entries)
+      if (other.scene == scene) {
+        e.width = other.width;
+        e.height = other.height;
+        break;
+      }
     e.command = "povray +I" + scene + ".pov +O" + (e.variant == "aa" ? scene : scene + "." + e.variant) + ".png";
     planned.push_back(e);
   }
@@ -113,6 +119,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
   }
   const std::vector<JobResult> done = runJobs(jobs, o.jobs > 0 ? o.jobs : defaultJobs());
   int failures = 0;
+  if (!o.verify) fs::create_directories(suite.references);  // a new suite's first references
   OutputFiles out;
   for (size_t i = 0; i < entries.size(); ++i) {
     const ManifestEntry& e = entries[i];
@@ -145,6 +152,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
 }
 
 void storeBlessed(Suite& suite, const std::vector<ManifestEntry>& entries, const std::vector<Outcome>& outcomes) {
+  fs::create_directories(suite.references);
   OutputFiles out;
   for (size_t i = 0; i < entries.size(); ++i) {
     ManifestEntry e = entries[i];

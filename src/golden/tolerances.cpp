@@ -10,7 +10,8 @@ Tolerances readTolerances(const std::string& path) {
   for (size_t i = 1; i < lines.size(); ++i) {
     const int line = int(i) + 1;
     if (lines[i].empty()) continue;
-    const std::vector<std::string> f = splitTabs(lines[i]);
+    std::vector<std::string> f = splitTabs(lines[i]);
+    if (f.size() == 3) f.emplace_back();  // no reason at all: said as such below
     if (f.size() != 4)
       throw tsvError(path, line, std::to_string(f.size()) + " fields; want scene, max_levels, max_fraction_over_1, reason");
     Tolerance x;
