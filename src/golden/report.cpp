@@ -100,8 +100,26 @@ Picture crop(const Picture& p, int x0, int y0, int size) {
   return c;
 }
 
-std::string img(const std::string& uri, const char* cls, const std::string& title) {
-  return uri.empty() ? "<td>&mdash;</td>" : fmt::format("<td><img class={} src=\"{}\" title=\"{}\"></td>", cls, uri, escape(title));
+// Each distinct picture is embedded once and the <img> elements name it by number: the
+// backends of one scene usually render the same bytes, and every identical test has the same
+// black difference, so a report of 200 tests holds about a third of their pictures.
+struct Pictures {
+  std::vector<std::string> uris;
+  std::map<std::string, size_t> index;
+  std::string tag(const std::string& uri, const char* cls, const std::string& title = "") {
+    auto [it, added] = index.emplace(uri, uris.size());
+    if (added) uris.push_back(uri);
+    return fmt::format("<img class={} data-i={} title=\"{}\">", cls, it->second, escape(title));
+  }
+  std::string script() const {
+    std::string s = "<script>const P=[";
+    for (const std::string& u : uris) s += "\n'" + u + "',";
+    return s + "];\ndocument.querySelectorAll('img[data-i]').forEach(e=>e.src=P[e.dataset.i]);\n</script>\n";
+  }
+};
+
+std::string cell(Pictures& pictures, const std::string& uri, const char* cls, const std::string& title) {
+  return uri.empty() ? "<td>&mdash;</td>" : "<td>" + pictures.tag(uri, cls, title) + "</td>";
 }
 
 void writeAtomically(const std::string& path, const std::string& text) {
@@ -175,6 +193,7 @@ void writeHtmlReport(const std::vector<Outcome>& outcomes, const std::string& pa
   std::stable_sort(order.begin(), order.end(), [](const Outcome* a, const Outcome* b) { return !a->passed && b->passed; });
   const std::string scratch = path + ".scratch.png";
   std::map<std::string, std::string> referenceUris;  // each reference encoded once
+  Pictures pictures;
   for (const Outcome* x : order) {
     const Picture image = readPicture(x->image), reference = readPicture(x->reference);
     const bool same = image.ok() && reference.ok() && image.width == reference.width && image.height == reference.height;
@@ -189,7 +208,7 @@ void writeHtmlReport(const std::vector<Outcome>& outcomes, const std::string& pa
       const std::string where = fmt::format("pixels ({}, {}) to ({}, {})", x0, y0, x0 + o.zoomSize - 1, y0 + o.zoomSize - 1);
       zoom = "<td title=\"" + where + "\">";
       for (const Picture* p : {&image, &reference, &diff})
-        zoom += "<img class=zoom src=\"" + dataUri(crop(*p, x0, y0, o.zoomSize), scratch) + "\"> ";
+        zoom += pictures.tag(dataUri(crop(*p, x0, y0, o.zoomSize), scratch), "zoom") + " ";
       zoom += "<br>" + where + "</td>";
       }
     }
@@ -208,10 +227,11 @@ void writeHtmlReport(const std::vector<Outcome>& outcomes, const std::string& pa
     else
       h << "<td data-v=1e9>&mdash;</td><td data-v=1e18>&mdash;</td><td data-v=1e9>&mdash;</td><td data-v=-1>&mdash;</td>";
     h << fmt::format("<td>{}</td><td data-v={:.3f}>{:.2f}</td>", tolerance, x->seconds, x->seconds);
-    h << img(dataUri(image, scratch), "full", x->image) << img(referenceUris[x->reference], "full", x->reference)
-      << img(diffUri, "full", "difference") << zoom << "</tr>\n";
+    h << cell(pictures, dataUri(image, scratch), "full", x->image)
+      << cell(pictures, referenceUris[x->reference], "full", x->reference)
+      << cell(pictures, diffUri, "full", "difference") << zoom << "</tr>\n";
   }
-  h << "</tbody></table>\n" << kScript << "</body></html>\n";
+  h << "</tbody></table>\n" << pictures.script() << kScript << "</body></html>\n";
   writeAtomically(path, h.str());
 }
 
