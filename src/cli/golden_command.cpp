@@ -148,8 +148,6 @@ int blessGolden(GoldenOptions o) {
 
 int reportGolden(const GoldenOptions& o) {
   const std::vector<Outcome> outcomes = loadOutcomes(o.run.out + "/results");
-  GoldenOptions quiet = o;
-  quiet.append = false;
   long failures = 0;
   for (const Outcome& x : outcomes) failures += !x.passed;
   const std::string html = o.report.empty() ? o.run.out + "/report.html" : o.report;

@@ -107,7 +107,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
       if (aa.empty()) aa = e.blessed() ? kDefaultAntialiasing : povrayAntialiasing(e.command);
       e.command = fmt::format("povray +I{}.pov +O{} +W{} +H{} -D +FN {}", e.scene, e.imageName(), e.width, e.height, aa);
       e.aaDepth = aaDepthOf(aa);
-      e.sdlSha256 = exportSha256(suite.scenePath(scene));
+      e.sdlSha256 = sha256Hex(pov.sdl);
       e.renderer = version;
       std::vector<std::string> argv;
       std::istringstream words(e.command);

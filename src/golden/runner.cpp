@@ -28,26 +28,22 @@ bool chosen(const std::vector<std::string>& list, const std::string& x) {
 std::vector<std::string> renderCommand(const RunOptions& o, const std::string& backend, const std::string& scene,
                                        const std::string& image, const std::vector<std::string>& settings,
                                        const ManifestEntry& e) {
-  std::vector<std::string> argv;
+  using Args = std::vector<std::string>;
   const std::string pvrt = selfPath();
+  Args argv;
   if (backend == "mpi") {
     argv = {o.mpirun};
     if (geteuid() == 0) argv.push_back("--allow-run-as-root");
-    for (const std::string& a : {std::string("--oversubscribe"), std::string("--bind-to"), std::string("none"),
-                                 std::string("-np"), std::to_string(o.ranks), pvrt, std::string("render"),
-                                 std::string("--backend"), std::string("mpi"), std::string("--threads"),
-                                 std::string("1")})
-      argv.push_back(a);
+    const Args mpi = {"--oversubscribe", "--bind-to", "none", "-np", std::to_string(o.ranks),
+                      pvrt, "render", "--backend", "mpi", "--threads", "1"};
+    argv.insert(argv.end(), mpi.begin(), mpi.end());
   } else if (backend == "openmp") {
     argv = {pvrt, "render", "--backend", "openmp", "--threads", std::to_string(o.threads)};
   } else {
     argv = {pvrt, "render", "--backend", "serial"};
   }
-  for (const std::string& a : {scene, std::string("-o"), image, std::string("-W"), std::to_string(e.width),
-                               std::string("-H"), std::to_string(e.height), std::string("--quiet")})
-    argv.push_back(a);
-  argv.insert(argv.end(), settings.begin(), settings.end());
-  argv.insert(argv.end(), o.renderOptions.begin(), o.renderOptions.end());
+  const Args common = {scene, "-o", image, "-W", std::to_string(e.width), "-H", std::to_string(e.height), "--quiet"};
+  for (const Args* more : {&common, &settings, &o.renderOptions}) argv.insert(argv.end(), more->begin(), more->end());
   return argv;
 }
 

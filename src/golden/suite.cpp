@@ -28,8 +28,9 @@ Suite openSuite(const std::string& scenes, const std::string& references) {
   return s;
 }
 
-std::string exportSha256(const std::string& scenePath) {
-  const std::string sdl = exportPov(loadSceneFile(scenePath)).sdl;
+std::string exportSha256(const std::string& scenePath) { return sha256Hex(exportPov(loadSceneFile(scenePath)).sdl); }
+
+std::string sha256Hex(const std::string& sdl) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int size = 0;
   if (!EVP_Digest(sdl.data(), sdl.size(), digest, &size, EVP_sha256(), nullptr))

@@ -37,5 +37,6 @@ Suite openSuite(const std::string& scenes, const std::string& references);
 // SHA-256 of the scene's POV-Ray export: what the manifest records, so that a reference made
 // from an older version of the scene (or of the exporter) is known to be stale.
 std::string exportSha256(const std::string& scenePath);
+std::string sha256Hex(const std::string& bytes);
 
 }  // namespace pvrt::golden
