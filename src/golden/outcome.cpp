@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 
 #include "core/error.h"
+#include "golden/suite.h"
 #include "golden/tsv.h"
 
 namespace pvrt::golden {
@@ -40,7 +41,7 @@ std::string unflatten(const std::string& s) {
 }  // namespace
 
 void saveOutcome(const Outcome& o, const std::string& resultsDir) {
-  fs::create_directories(resultsDir);
+  makeFolder(resultsDir);
   const CompareResult& r = o.stats;
   std::map<std::string, std::string> kv = {
       {"name", o.name}, {"scene", o.scene}, {"variant", o.variant}, {"backend", o.backend},
@@ -62,7 +63,7 @@ void saveOutcome(const Outcome& o, const std::string& resultsDir) {
     for (const auto& [k, v] : kv) out << k << '\t' << flatten(v) << '\n';
     if (!out) throw Error(ExitCode::OutputError, "cannot write \"" + printableName(tmp) + "\"");
   }
-  fs::rename(tmp, path);  // a report never reads half a record
+  renameFile(tmp, path);  // a report never reads half a record
 }
 
 std::vector<Outcome> loadOutcomes(const std::string& resultsDir) {

@@ -119,7 +119,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
   }
   const std::vector<JobResult> done = runJobs(jobs, o.jobs > 0 ? o.jobs : defaultJobs());
   int failures = 0;
-  if (!o.verify) fs::create_directories(suite.references);  // a new suite's first references
+  if (!o.verify) makeFolder(suite.references);  // a new suite's first references
   OutputFiles out;
   for (size_t i = 0; i < entries.size(); ++i) {
     const ManifestEntry& e = entries[i];
@@ -138,7 +138,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
       continue;
     }
     out.output(stored, "reference");
-    fs::copy_file(made, out.stage(stored), fs::copy_options::overwrite_existing);
+    copyFile(made, out.stage(stored));
     suite.manifest.put(e);
     fmt::print("{}: {} x {}, {}\n", e.name(), e.width, e.height, e.command);
   }
@@ -152,14 +152,14 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
 }
 
 void storeBlessed(Suite& suite, const std::vector<ManifestEntry>& entries, const std::vector<Outcome>& outcomes) {
-  fs::create_directories(suite.references);
+  makeFolder(suite.references);
   OutputFiles out;
   for (size_t i = 0; i < entries.size(); ++i) {
     ManifestEntry e = entries[i];
     const Outcome& x = outcomes[i];
     const std::string stored = suite.referencePath(e);
     out.output(stored, "reference");
-    fs::copy_file(x.image, out.stage(stored), fs::copy_options::overwrite_existing);
+    copyFile(x.image, out.stage(stored));
     std::string settings;
     for (const std::string& s : renderSettings(e, suite.manifestPath())) settings += " " + s;
     e.command = fmt::format("pvrt render {}.xml -o {} -W {} -H {}{}", e.scene, e.imageName(), e.width, e.height,

@@ -97,8 +97,8 @@ std::vector<Outcome> runSuite(const Suite& suite, const RunOptions& o) {
                                      "\", which is not found (--mpirun PATH)");
   const Selection sel = select(suite, o);
   const std::string images = o.out + "/images", logs = o.out + "/logs", results = o.out + "/results";
-  fs::create_directories(images);
-  fs::create_directories(logs);
+  makeFolder(images);
+  makeFolder(logs);
 
   std::vector<Outcome> outcomes;
   for (const std::string& scene : sel.unreferenced)
@@ -130,7 +130,8 @@ std::vector<Outcome> runSuite(const Suite& suite, const RunOptions& o) {
         continue;
       }
       x.image = images + "/" + x.name + ".png";
-      fs::remove(x.image);
+      std::error_code ignored;
+      fs::remove(x.image, ignored);  // a render that fails must not leave the last run's image to judge
       jobs.push_back({renderCommand(o, backend, scene, x.image, settings, e), logs + "/" + x.name + ".log", ""});
       pending.push_back(x);
     }

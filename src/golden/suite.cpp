@@ -44,4 +44,30 @@ std::string sha256Hex(const std::string& sdl) {
   return s;
 }
 
+namespace {
+
+void check(const std::error_code& ec, const std::string& path) {
+  if (ec) throw Error(ExitCode::OutputError, "cannot write \"" + printableName(path) + "\": " + ec.message());
+}
+
+}  // namespace
+
+void makeFolder(const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  check(ec, path);
+}
+
+void copyFile(const std::string& from, const std::string& to) {
+  std::error_code ec;
+  fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
+  check(ec, to);
+}
+
+void renameFile(const std::string& from, const std::string& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  check(ec, to);
+}
+
 }  // namespace pvrt::golden

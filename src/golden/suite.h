@@ -39,4 +39,10 @@ Suite openSuite(const std::string& scenes, const std::string& references);
 std::string exportSha256(const std::string& scenePath);
 std::string sha256Hex(const std::string& bytes);
 
+// The file-system steps of a run, each throwing pvrt::Error(OutputError) `cannot write "PATH": why`
+// instead of a std::filesystem exception.
+void makeFolder(const std::string& path);
+void copyFile(const std::string& from, const std::string& to);
+void renameFile(const std::string& from, const std::string& to);
+
 }  // namespace pvrt::golden

@@ -168,13 +168,15 @@ mpi)  # the MPI backend through the real mpirun
   expect 0 "$pvrt" golden run "$dir" --backends mpi --np 2 --out "$out"
   has "PASS prim_sphere.aa.mpi: identical" "$dir/out"
   ;;
-usage)  # usage errors have their own code, 2
+usage)  # usage errors have their own code, 2; unwritable output 4; malformed suite files 3
   expect 2 "$pvrt" golden run "$dir/nowhere"
   has 'error: ".*/nowhere" is not a folder of scenes' "$dir/out"
   expect 2 "$pvrt" golden run "$dir" --backends serial,gpu --out "$out"
   has 'unknown backend "gpu"' "$dir/out"
   expect 2 "$pvrt" golden run "$dir" --scene nosuch --out "$out"
   expect 2 "$pvrt" golden
+  expect 4 "$pvrt" golden run "$dir" --out /proc/no-such-folder
+  has '^cannot write "/proc/no-such-folder/images": ' "$dir/out"
   expect 2 "$pvrt" golden compare "$dir"
   printf 'scene\tvariant\n' >"$dir/reference/manifest.tsv"
   printf 'x\ty\n' >>"$dir/reference/manifest.tsv"
