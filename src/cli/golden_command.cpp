@@ -211,7 +211,7 @@ Command addGoldenCommand(CLI::App& app) {
   CLI::App* make = g->add_subcommand("make", "Make references with POV-Ray from each scene's export");
   suiteOptions(make, *o);
   make->add_option("scene", o->names, "Scenes to make (default all)");
-  make->add_option("--variant", o->make.variant, "Only this variant (a new one needs --antialiasing)");
+  make->add_option("--variant", o->make.variant, "Only this variant (a new one is made with --antialiasing)");
   make->add_option("--antialiasing", o->make.antialiasing, "POV-Ray options, e.g. \"+A0.0 +AM1 +R3 -J\" (default: the manifest's)");
   make->add_option("--width", o->make.width, "Width of a new reference")->check(CLI::Range(1, 16384))->capture_default_str();
   make->add_option("--povray", o->make.povray, "POV-Ray program")->capture_default_str();

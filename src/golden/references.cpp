@@ -147,6 +147,8 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
     out.stageBytes(suite.manifestPath(), formatManifest(suite.manifest));
     out.commit();
     fmt::print("wrote {} references and {}\n", entries.size(), suite.manifestPath());
+  } else if (!o.verify) {
+    fmt::print("{} of {} references failed: nothing stored\n", failures, entries.size());
   }
   return failures;
 }

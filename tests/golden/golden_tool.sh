@@ -59,6 +59,11 @@ make)  # the manifest says what made each reference, and POV-Ray makes the same 
     [ -f "$dir/reference/$s.png" ] || fail "$s: no image"
   done
   expect 0 "$pvrt" golden make "$dir" --verify
+  before=$(md5sum "$dir"/reference/*)
+  expect 1 "$pvrt" golden make "$dir" --povray false  # POV-Ray fails: nothing is stored
+  has "3 of 3 references failed: nothing stored" "$dir/out"
+  [ "$before" = "$(md5sum "$dir"/reference/*)" ] || fail "a failed make changed the references"
+  expect 2 "$pvrt" golden make "$dir" --povray /no/such/povray
   cp "$dir/reference/light_shadowless.png" "$dir/reference/prim_sphere.png"
   expect 1 "$pvrt" golden make "$dir" prim_sphere --verify
   has "prim_sphere.aa: POV-Ray does NOT reproduce" "$dir/out"
