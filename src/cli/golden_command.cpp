@@ -18,6 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 using namespace pvrt::golden;
 
+// A list option takes one value each time it is given (`--scene a --scene b`), so that it
+// never swallows the positional folder after it (`--scene a SCENES`).
+constexpr auto kEach = CLI::MultiOptionPolicy::TakeAll;
+
 struct GoldenOptions {
   std::string scenes, references, images, report, junit;
   std::vector<std::string> names;  // positional scenes of make and bless
@@ -175,8 +179,9 @@ void outputOptions(CLI::App* c, GoldenOptions& o) {
 }
 
 void selectOptions(CLI::App* c, GoldenOptions& o) {
-  c->add_option("--scene", o.run.scenes, "Only this scene (repeatable)");
-  c->add_option("--variant", o.run.variants, "Only this variant, e.g. aa or noaa (repeatable)");
+  c->add_option("--scene", o.run.scenes, "Only this scene (repeatable)")->expected(1)->multi_option_policy(kEach);
+  c->add_option("--variant", o.run.variants, "Only this variant, e.g. aa or noaa (repeatable)")
+      ->expected(1)->multi_option_policy(kEach);
   c->add_option("--skip-list", o.run.skipList, "File of scene.variant names to leave out, one a line");
   c->add_flag("--append", o.append, "Add to OUT/results and write no report (pvrt golden report OUT writes it)");
 }
@@ -194,13 +199,13 @@ Command addGoldenCommand(CLI::App& app) {
   selectOptions(run, *o);
   outputOptions(run, *o);
   run->add_option("--backends", o->run.backends, "serial, openmp, mpi (comma-separated)")
-      ->delimiter(',')->capture_default_str();
+      ->delimiter(',')->expected(1)->multi_option_policy(kEach)->capture_default_str();
   run->add_option("--threads", o->run.threads, "Threads of an openmp render")->check(CLI::Range(1, 1024))->capture_default_str();
   run->add_option("--np", o->run.ranks, "Ranks of an mpi render")->check(CLI::Range(1, 1024))->capture_default_str();
   run->add_option("-j,--jobs", o->run.jobs, "Renders at once (default half the CPUs)")->check(CLI::Range(1, 1024));
   run->add_option("--mpirun", o->run.mpirun, "mpirun to start mpi renders with")->capture_default_str();
   run->add_option("--render-option", o->run.renderOptions, "An option for every pvrt render, e.g. --render-option=--schedule=cyclic")
-      ->allow_extra_args(false);
+      ->expected(1)->multi_option_policy(kEach);
 
   CLI::App* cmp = g->add_subcommand("compare", "Compare another renderer's images with the references");
   suiteOptions(cmp, *o);

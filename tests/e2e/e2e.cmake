@@ -12,7 +12,7 @@ foreach(scene ${PVRT_SCENES})
   set_tests_properties(e2e.render.${name} PROPERTIES LABELS e2e)
 endforeach()
 
-foreach(sub render generate accuracy)
+foreach(sub render generate accuracy compare export-pov golden)
   add_test(NAME e2e.help.${sub} COMMAND pvrt ${sub} --help)
   set_tests_properties(e2e.help.${sub} PROPERTIES LABELS e2e PASS_REGULAR_EXPRESSION "Usage|Options")
 endforeach()
