@@ -13,9 +13,12 @@
 #                                   fails, and so prints the report's path, when any test failed
 function(pvrt_add_golden_tests)
   cmake_parse_arguments(G "" "NAME;SCENES;REFERENCES;OUT;PVRT;MPIRUN" "BACKENDS;LABELS;POVRAY_RECHECK" ${ARGN})
+  # Relative folders are the calling CMakeLists.txt's, as elsewhere in CMake.
+  get_filename_component(G_SCENES ${G_SCENES} ABSOLUTE BASE_DIR ${CMAKE_CURRENT_SOURCE_DIR})
   if(NOT G_REFERENCES)
     set(G_REFERENCES ${G_SCENES}/reference)
   endif()
+  get_filename_component(G_REFERENCES ${G_REFERENCES} ABSOLUTE BASE_DIR ${CMAKE_CURRENT_SOURCE_DIR})
   if(NOT G_OUT)
     set(G_OUT ${CMAKE_CURRENT_BINARY_DIR}/${G_NAME}-out)
   endif()

@@ -168,6 +168,26 @@ append)  # tests run apart gather their results; `golden report` writes one repo
   has "report: $out/report.html" "$dir/out"
   has 'tests="2" failures="1"' "$out/junit.xml"
   ;;
+cmake)  # pvrt_add_golden_tests in a project of its own: a scene added later is tested without re-running cmake
+  mkdir "$dir/project"
+  printf 'cmake_minimum_required(VERSION 3.20)\nproject(suite NONE)\nenable_testing()\ninclude(%s)\n%s\n' \
+    "$root/cmake/PvrtGolden.cmake" \
+    "pvrt_add_golden_tests(NAME mine SCENES $dir REFERENCES $dir/reference PVRT $pvrt BACKENDS serial LABELS mine)" \
+    >"$dir/project/CMakeLists.txt"
+  expect 0 cmake -S "$dir/project" -B "$dir/project/build"
+  expect 0 ctest --test-dir "$dir/project/build" -N
+  has "mine.prim_sphere.aa.serial" "$dir/out"
+  has "Total Tests: 6" "$dir/out"  # 3 scenes, new, setup, report
+  expect 0 ctest --test-dir "$dir/project/build" --output-on-failure
+  cp "$dir/prim_sphere.xml" "$dir/later.xml"
+  expect 0 "$pvrt" golden bless "$dir" later --width 64 --yes --out "$out"
+  expect 0 ctest --test-dir "$dir/project/build" -R 'mine[.]new' -V
+  has "PASS later.aa.serial: identical" "$dir/out"
+  sed -i 's/0.9 0.25 0.2/0.2 0.9 0.25/' "$dir/later.xml"  # now stale: mine.new and mine.report fail, with the path
+  expect 8 ctest --test-dir "$dir/project/build" --output-on-failure
+  has "FAIL later.aa.serial: reference is stale" "$dir/out"
+  has "report: $dir/project/build/mine-out/report.html" "$dir/out"
+  ;;
 mpi)  # the MPI backend through the real mpirun
   command -v mpirun >/dev/null || { echo "mpirun not installed"; exit 77; }
   expect 0 "$pvrt" golden run "$dir" --backends mpi --np 2 --out "$out"
