@@ -1,68 +1,14 @@
 #!/usr/bin/env bash
-# Regenerates the golden images in reference/: POV-Ray 3.7's renders of every scene's
-# export, made with the reproducible recipe of shared/povray-semantics.md section 0, and
-# reference/manifest.tsv, which records for each the export's SHA-256, POV-Ray's version
-# and the full command line. The golden tests (ctest -L golden) fail when an export no
-# longer matches its recorded hash, i.e. when this script needs to be run again.
+# Regenerates the golden images in reference/ with POV-Ray 3.7 from every scene's export, and
+# reference/manifest.tsv: `pvrt golden make` on the repository's own suite (docs/golden.md).
+# Each reference keeps the size and antialiasing its manifest line records; a new scene gets
+# 160 pixels wide and `+A0.0 +AM1 +R3 -J`. The golden tests (ctest -L golden) fail when an
+# export no longer matches its recorded hash, i.e. when this script needs to be run again.
 #
 # Usage: tools/update-references.sh [BUILD_DIR] [SCENE_NAME...]   (default: build, all scenes)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
 shift || true
-pvrt=$build/pvrt
-[ -x "$pvrt" ] || { echo "update-references: $pvrt not built" >&2; exit 1; }
-command -v povray >/dev/null || { echo "update-references: povray not installed (tools/install-deps.sh)" >&2; exit 1; }
-
-# Scenes that also get a one-sample-per-pixel (-A) reference.
-noaa=" paper1 shapes lights "
-test_width=160
-
-# POV-Ray may only write below /tmp or the current directory (Debian's povray.conf).
-work=$(mktemp -d /tmp/pvrt-references.XXXXXX)
-trap 'rm -rf "$work"' EXIT
-version=$(povray --version 2>&1 | sed -n 's/^POV-Ray \([0-9][^ ]*\).*/\1/p' | head -1)
-
-manifest=$root/reference/manifest.tsv
-mkdir -p "$root/reference"
-declare -A keep
-if (($#)); then  # partial update: keep the other scenes' lines
-  for n in "$@"; do keep[$n]=0; done
-fi
-tmp_manifest=$work/manifest.tsv
-printf 'scene\tvariant\twidth\theight\taa_depth\tsdl_sha256\tpovray\tcommand\n' >"$tmp_manifest"
-if (($#)) && [ -f "$manifest" ]; then
-  tail -n +2 "$manifest" | while IFS=$'\t' read -r name rest; do
-    [ -n "${keep[$name]+x}" ] || printf '%s\t%s\n' "$name" "$rest"
-  done >>"$tmp_manifest"
-fi
-
-scenes=()
-if (($#)); then for n in "$@"; do scenes+=("$root/scenes/$n.xml"); done
-else scenes=("$root"/scenes/*.xml); fi
-
-for scene in "${scenes[@]}"; do
-  name=$(basename "$scene" .xml)
-  # Test size: 160 pixels wide, the scene's own aspect ratio.
-  w=$(sed -n 's/.*<image[^>]*width="\([0-9]*\)".*/\1/p' "$scene" | head -1)
-  h=$(sed -n 's/.*<image[^>]*height="\([0-9]*\)".*/\1/p' "$scene" | head -1)
-  w=${w:-320} h=${h:-240}
-  width=$test_width
-  height=$(( (test_width * h + w / 2) / w ))
-  "$pvrt" export-pov --strict "$scene" -o "$work/$name.pov"
-  sha=$(sha256sum "$work/$name.pov" | cut -c1-64)
-  variants=(aa)
-  [[ $noaa == *" $name "* ]] && variants+=(noaa)
-  for variant in "${variants[@]}"; do
-    if [ "$variant" = aa ]; then depth=3 aa="+A0.0 +AM1 +R3 -J" out=$name.png
-    else depth=0 aa="-A" out=$name.noaa.png; fi
-    cmd="povray +I$name.pov +O$out +W$width +H$height -D +FN $aa"
-    (cd "$work" && $cmd >"$work/$name.log" 2>&1) || { cat "$work/$name.log" >&2; exit 1; }
-    cp "$work/$out" "$root/reference/$out"
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$variant" "$width" "$height" "$depth" "$sha" "$version" "$cmd" \
-      >>"$tmp_manifest"
-    echo "update-references: $out ($width x $height, $variant)"
-  done
-done
-{ head -1 "$tmp_manifest"; tail -n +2 "$tmp_manifest" | sort -t$'\t' -k1,1 -k2,2; } >"$manifest"
-echo "update-references: wrote $manifest"
+[ -x "$build/pvrt" ] || { echo "update-references: $build/pvrt not built" >&2; exit 1; }
+exec "$build/pvrt" golden make "$root/scenes" --references "$root/reference" "$@"

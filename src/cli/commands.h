@@ -16,5 +16,6 @@ Command addExportCommand(CLI::App& app);
 Command addCompareCommand(CLI::App& app);
 Command addAccuracyCommand(CLI::App& app);
 Command addMpiBenchCommand(CLI::App& app);
+Command addGoldenCommand(CLI::App& app);
 
 }  // namespace pvrt::cli

@@ -31,7 +31,7 @@ int runCompare(const CompareOptions& o) {
   }
   if (r.sizeMismatch) {
     fmt::print("FAILURE: the images differ in size\n");
-    return int(CompareExit::SizeMismatch);
+    return int(CompareExit::Failure);
   }
   static const char* channel[] = {"R", "G", "B"};
   fmt::print("Comparing \"{}\" and \"{}\" ({} x {})\n", o.a, o.b, r.width, r.height);
@@ -47,11 +47,11 @@ int runCompare(const CompareOptions& o) {
   }
   if (r.over0 == 0) {
     fmt::print("PASS (identical)\n");
-    return int(CompareExit::Match);
+    return int(CompareExit::Pass);
   }
   if (r.pass(o.t)) {
     fmt::print("PASS (within {} levels, at most {:.4f}% over 1 level)\n", o.t.maxLevels, o.t.maxFractionOver1 * 100);
-    return int(CompareExit::Warning);
+    return int(CompareExit::Pass);
   }
   fmt::print("FAILURE\n");
   return int(CompareExit::Failure);
@@ -62,8 +62,9 @@ int runCompare(const CompareOptions& o) {
 Command addCompareCommand(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* c = app.add_subcommand("compare",
-                                   "Compare two images pixel by pixel. Exit 0: identical, 1: within thresholds, "
-                                   "2: over thresholds, 3: sizes differ, 4: unreadable");
+                                   "Compare two images pixel by pixel. Exit 0: PASS (identical or within the thresholds), "
+                                   "1: FAILURE (over the thresholds, or sizes differ), 2: bad command line, "
+                                   "4: an image cannot be read");
   c->add_option("a", o->a, "First image")->required();
   c->add_option("b", o->b, "Second image")->required();
   c->add_option("--diff", o->diff, "Write |A-B| x scale as a PNG");

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   add(pvrt::cli::addCompareCommand);
   add(pvrt::cli::addAccuracyCommand);
   add(pvrt::cli::addMpiBenchCommand);
+  add(pvrt::cli::addGoldenCommand);
 
   try {
     app.parse(argc, argv);

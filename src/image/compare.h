@@ -31,8 +31,10 @@ struct CompareResult {
   }
 };
 
-// Exit codes in the manner of OpenImageIO's idiff.
-enum class CompareExit : int { Match = 0, Warning = 1, Failure = 2, SizeMismatch = 3, FileError = 4 };
+// `pvrt compare`'s exit codes: the verdict it prints, and apart from it a usage error (2, as
+// for every pvrt command) and an unreadable image (4). OpenImageIO's idiff gives 1 to images
+// within tolerance; a script testing `$? -eq 0` then failed a PASS, so pvrt does not.
+enum class CompareExit : int { Pass = 0, Failure = 1, FileError = 4 };
 
 // Compares interleaved 8-bit RGB buffers of the same size (OpenImageIO's ImageBufAlgo::compare).
 CompareResult compareImages8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int width, int height);

@@ -12,7 +12,7 @@ foreach(scene ${PVRT_SCENES})
   set_tests_properties(e2e.render.${name} PROPERTIES LABELS e2e)
 endforeach()
 
-foreach(sub render generate accuracy)
+foreach(sub render generate accuracy compare export-pov golden)
   add_test(NAME e2e.help.${sub} COMMAND pvrt ${sub} --help)
   set_tests_properties(e2e.help.${sub} PROPERTIES LABELS e2e PASS_REGULAR_EXPRESSION "Usage|Options")
 endforeach()
@@ -163,6 +163,11 @@ pvrt_expect_error(time_budget_with_spp 2 "excludes"
   ARGS render ${PVRT_PAPER1} --time-budget 1 --spp 4)
 
 # Any c with the jitter sampler: the same bits on every backend and schedule; grid and pov keep squares.
+# `pvrt compare`: the printed verdict and the exit code agree; usage errors have their own code.
+add_test(NAME e2e.compare_exit_codes
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/compare_codes.sh ${PROJECT_BINARY_DIR} ${PROJECT_SOURCE_DIR})
+set_tests_properties(e2e.compare_exit_codes PROPERTIES LABELS e2e TIMEOUT 60)
+
 add_test(NAME e2e.jitter_any_c
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/jitter_any_c.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/jitter-any-c)
 set_tests_properties(e2e.jitter_any_c PROPERTIES LABELS e2e TIMEOUT 300)

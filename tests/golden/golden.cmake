@@ -1,45 +1,23 @@
-# Golden-image tests against POV-Ray's renders (label golden), generated from
-# reference/manifest.tsv: for every reference, one freshness test per scene, one render
-# test per backend, and for a few scenes a fresh POV-Ray render of the reference.
-set(PVRT_GOLDEN ${CMAKE_CURRENT_SOURCE_DIR}/golden/golden.sh)
-set(PVRT_MANIFEST ${PROJECT_SOURCE_DIR}/reference/manifest.tsv)
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PVRT_MANIFEST})
+# The repository's golden-image tests against POV-Ray's renders (label golden): scenes/ and
+# reference/ as a suite of `pvrt golden`, through the CMake function any project can use
+# (cmake/PvrtGolden.cmake). POV-Ray re-renders a few references in the suite (the others only
+# when they are remade with `pvrt golden make`).
+include(${PROJECT_SOURCE_DIR}/cmake/PvrtGolden.cmake)
 set(PVRT_GOLDEN_BACKENDS serial openmp)
 if(PVRT_MPIRUN)
   list(APPEND PVRT_GOLDEN_BACKENDS mpi)
 endif()
-# POV-Ray re-renders these references in the test suite (others only when regenerated).
-set(PVRT_POVRAY_RECHECK paper1 shapes lights)
+pvrt_add_golden_tests(NAME golden SCENES ${PROJECT_SOURCE_DIR}/scenes REFERENCES ${PROJECT_SOURCE_DIR}/reference
+                      OUT ${PROJECT_BINARY_DIR}/golden-out BACKENDS ${PVRT_GOLDEN_BACKENDS} MPIRUN ${PVRT_MPIRUN}
+                      POVRAY_RECHECK paper1 shapes lights)
 
-if(EXISTS ${PVRT_MANIFEST})
-  file(STRINGS ${PVRT_MANIFEST} lines)
-  list(REMOVE_AT lines 0)
-  set(golden_tests "")
-  foreach(line ${lines})
-    string(REPLACE "\t" ";" fields "${line}")
-    list(GET fields 0 scene)
-    list(GET fields 1 variant)
-    if(variant STREQUAL "aa")
-      add_test(NAME golden.fresh.${scene}
-        COMMAND ${PVRT_GOLDEN} fresh ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR} ${scene})
-      list(APPEND golden_tests golden.fresh.${scene})
-    endif()
-    foreach(backend ${PVRT_GOLDEN_BACKENDS})
-      set(name golden.${scene}.${variant}.${backend})
-      add_test(NAME ${name}
-        COMMAND ${PVRT_GOLDEN} render ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR} ${scene} ${variant} ${backend})
-      list(APPEND golden_tests ${name})
-    endforeach()
-    if(scene IN_LIST PVRT_POVRAY_RECHECK)
-      add_test(NAME golden.povray.${scene}.${variant}
-        COMMAND ${PVRT_GOLDEN} povray ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR} ${scene} ${variant})
-      list(APPEND golden_tests golden.povray.${scene}.${variant})
-    endif()
-  endforeach()
-  # A clean slate before, and the HTML report of whatever failed after.
-  add_test(NAME golden.setup COMMAND ${CMAKE_COMMAND} -E rm -rf ${PROJECT_BINARY_DIR}/golden-report)
-  add_test(NAME golden.report COMMAND ${PVRT_GOLDEN} report ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR})
-  set_tests_properties(golden.setup PROPERTIES FIXTURES_SETUP golden LABELS golden)
-  set_tests_properties(golden.report PROPERTIES FIXTURES_CLEANUP golden LABELS golden)
-  set_tests_properties(${golden_tests} PROPERTIES LABELS golden FIXTURES_REQUIRED golden)
-endif()
+# `pvrt golden` itself (label golden-tool): a suite of three scenes made with POV-Ray, then
+# one case each on a copy of it (tests/golden/golden_tool.sh says what each checks).
+set(PVRT_GOLDEN_TOOL ${CMAKE_CURRENT_SOURCE_DIR}/golden/golden_tool.sh)
+add_test(NAME golden-tool.setup COMMAND ${PVRT_GOLDEN_TOOL} setup ${PROJECT_BINARY_DIR} ${PROJECT_SOURCE_DIR})
+set_tests_properties(golden-tool.setup PROPERTIES FIXTURES_SETUP golden-tool LABELS golden-tool)
+foreach(case make variant run broken stale tolerance bless external new append cmake mpi usage)
+  add_test(NAME golden-tool.${case} COMMAND ${PVRT_GOLDEN_TOOL} ${case} ${PROJECT_BINARY_DIR} ${PROJECT_SOURCE_DIR})
+  set_tests_properties(golden-tool.${case} PROPERTIES LABELS golden-tool FIXTURES_REQUIRED golden-tool
+                                                     SKIP_RETURN_CODE 77 TIMEOUT 120)
+endforeach()
