@@ -114,8 +114,28 @@ PovTransform PovTransform::axisRotation(const Vec3& axis, double radians) {
   return t;
 }
 
-PovTransform PovTransform::affine(const Affine& toWorld, const Affine& toObject) {
-  return {rowForm(toWorld), rowForm(toObject)};
+PovTransform PovTransform::matrixOf(const Affine& toWorld) {
+  const Matrix m = rowForm(toWorld);
+  // The determinant of m without row `row` and column `col`, its six products summed in
+  // MInvers's order: the three "diagonals" down, then the three up.
+  auto minor = [&m](int row, int col) {
+    int r[3], c[3];
+    for (int i = 0, k = 0; i < 4; ++i)
+      if (i != row) r[k++] = i;
+    for (int j = 0, k = 0; j < 4; ++j)
+      if (j != col) c[k++] = j;
+    return m[r[0]][c[0]] * m[r[1]][c[1]] * m[r[2]][c[2]] + m[r[0]][c[1]] * m[r[1]][c[2]] * m[r[2]][c[0]] +
+           m[r[0]][c[2]] * m[r[1]][c[0]] * m[r[2]][c[1]] - m[r[2]][c[0]] * m[r[1]][c[1]] * m[r[0]][c[2]] -
+           m[r[2]][c[1]] * m[r[1]][c[2]] * m[r[0]][c[0]] - m[r[2]][c[2]] * m[r[1]][c[0]] * m[r[0]][c[1]];
+  };
+  Matrix d;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) d[i][j] = minor(i, j);
+  const double det = m[0][0] * d[0][0] - m[0][1] * d[0][1] + m[0][2] * d[0][2] - m[0][3] * d[0][3];
+  PovTransform t{m, {}};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) t.inverse[i][j] = ((i + j) % 2 ? -d[j][i] : d[j][i]) / det;
+  return t;
 }
 
 PovTransform PovTransform::coordinate(const Vec3& origin, Vec3 up, double radius, double length) {

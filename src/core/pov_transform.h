@@ -23,9 +23,9 @@ struct PovTransform {
   static PovTransform rotation(const Vec3& degrees);  // Compute_Rotation_Transform: x, then y, then z
   // Compute_Axis_Rotation_Transform: `radians` about `axis` (made unit here).
   static PovTransform axisRotation(const Vec3& axis, double radians);
-  // A general affine map given with its inverse (POV-Ray inverts a `matrix` by cofactors;
-  // pvrt's own inverse stands in for it here, so such a step may round differently).
-  static PovTransform affine(const Affine& toWorld, const Affine& toObject);
+  // Compute_Matrix_Transform: a general affine map (`matrix <...>`), its inverse found by
+  // cofactors as MInvers finds it. The map must not be singular (the loader refuses those).
+  static PovTransform matrixOf(const Affine& toWorld);
   // Compute_Coordinate_Transform: the canonical shape (axis z, radius 1, height 1) scaled to
   // `radius` and `length`, turned from z onto the unit `up` and moved to `origin`.
   static PovTransform coordinate(const Vec3& origin, Vec3 up, double radius, double length);

@@ -142,9 +142,7 @@ class PrimitiveBuilder {
       case TransformStep::Kind::Rotate: return PovTransform::rotation(step.v);
       case TransformStep::Kind::Matrix: break;
     }
-    const Affine m = step.affine();
-    const auto inverse = m.inverse();  // the loader has refused singular matrices
-    return PovTransform::affine(m, inverse ? *inverse : Affine{});
+    return PovTransform::matrixOf(step.affine());  // the loader has refused singular matrices
   }
   // A lone triangle's transforms, one at a time as POV-Ray's parser applies them.
   void povSteps(PovTriangleBuilder& b) const {

@@ -48,6 +48,17 @@ TEST(PovTransform, ComposedStepsAndTheirInverse) {
   expectVecNear(m.normalToWorld({0, 0, 1}), {0, 0, 1});
 }
 
+// A `matrix` keeps the map as written, and the inverse found by cofactors undoes it.
+TEST(PovTransform, MatrixAndItsCofactorInverse) {
+  const Affine a = Affine::povMatrix({1, 0.5, 0, 0, 2, 0.25, 0.3, 0, 1.5, 4, -2, 1});
+  const Transform t = PovTransform::matrixOf(a).toTransform();
+  EXPECT_EQ(t.toWorld, a);
+  for (const Vec3 p : {Vec3{0, 0, 0}, Vec3{1, 2, 3}, Vec3{-7, 0.5, 11}}) {
+    expectVecNear(t.toObject.applyPoint(t.toWorld.applyPoint(p)), p, 1e-13);
+    expectVecNear(t.toObject.applyPoint(p), a.inverse()->applyPoint(p), 1e-13);
+  }
+}
+
 // The canonical shape (axis z, radius 1, height 1) placed on an axis: canonical (0,0,0)
 // goes to the origin, (0,0,1) to origin + up * length, (1,0,0) to a point `radius` from
 // the axis.
