@@ -1,6 +1,8 @@
 // `pvrt compare A B [--diff D.png]`: how far apart two images are, in 8-bit levels.
 #include <fmt/core.h>
 
+#include <limits>
+
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/output_files.h"
@@ -50,7 +52,11 @@ int runCompare(const CompareOptions& o) {
     return int(CompareExit::Pass);
   }
   if (r.pass(o.t)) {
-    fmt::print("PASS (within {} levels, at most {:.4f}% over 1 level)\n", o.t.maxLevels, o.t.maxFractionOver1 * 100);
+    if (o.t.maxOffBy1 >= 0)
+      fmt::print("PASS (within {} levels, at most {:.4f}% over 1 level, at most {} off by 1)\n", o.t.maxLevels,
+                 o.t.maxFractionOver1 * 100, o.t.maxOffBy1);
+    else
+      fmt::print("PASS (within {} levels, at most {:.4f}% over 1 level)\n", o.t.maxLevels, o.t.maxFractionOver1 * 100);
     return int(CompareExit::Pass);
   }
   fmt::print("FAILURE\n");
@@ -72,6 +78,9 @@ Command addCompareCommand(CLI::App& app) {
   c->add_option("--max-levels", o->t.maxLevels, "Largest allowed difference in levels")->capture_default_str();
   c->add_option("--max-fraction-over-1", o->t.maxFractionOver1, "Allowed share of channels over 1 level")
       ->capture_default_str();
+  c->add_option("--max-off-by-1", o->t.maxOffBy1, "Allowed count of channels that differ by exactly 1 level (-1: any)")
+      ->capture_default_str()
+      ->check(CLI::Range(-1L, std::numeric_limits<long>::max()));
   return [o] { return runCompare(*o); };
 }
 

@@ -55,7 +55,12 @@ struct Transform {
     if (!inv) return std::nullopt;
     return Transform{a, *inv};
   }
-  Vec3 normalToWorld(const Vec3& n) const { return normalize(toObject.applyTransposed(n)); }
+  // Made unit as POV-Ray's VNormalize does, times 1 / length (its shapes all carry their
+  // normals out this way, MTransNormal then VNormalize).
+  Vec3 normalToWorld(const Vec3& n) const {
+    const Vec3 w = toObject.applyTransposed(n);
+    return w * (1.0 / length(w));
+  }
 };
 
 // A transform held by pointer: a Primitive carries one only when its shape is not in world

@@ -53,75 +53,6 @@ std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, dou
   return std::nullopt;
 }
 
-// ---------------------------------------------------------------- cylinder and cone
-
-// A cone frustum with radius rb at the base and rc at the cap (a cylinder when equal).
-// part 0: the side, 1: the base cap, 2: the top cap.
-std::optional<ShapeHit> hitFrustum(const Vec3& base, const Vec3& cap, double rb, double rc, bool open,
-                                   const Ray& ray, double lo, double hi, double unit) {
-  const Vec3 axisFull = cap - base;
-  const double height = length(axisFull);
-  const Vec3 a = axisFull / height;
-  const Vec3 oc = ray.origin - base;
-  const double h0 = dot(oc, a), dh = dot(ray.dir, a);
-  const Vec3 oPerp = oc - a * h0, dPerp = ray.dir - a * dh;
-  const double k = (rc - rb) / height;  // radius change per unit height
-  const double r0 = rb + k * h0;
-  const double minT = std::max(lo, kConeTolerance * unit / length(ray.dir));
-
-  ShapeHit best{hi};
-  bool found = false;
-  auto consider = [&](double t, int part) {
-    if (t > minT && t < best.t) {
-      best = ShapeHit{t, part};
-      found = true;
-    }
-  };
-
-  const double qa = dot(dPerp, dPerp) - k * k * dh * dh;
-  const double qb = 2 * (dot(oPerp, dPerp) - k * dh * r0);
-  const double qc = dot(oPerp, oPerp) - r0 * r0;
-  if (std::fabs(qa) > kPovEpsilon * dot(ray.dir, ray.dir)) {
-    const double disc = qb * qb - 4 * qa * qc;
-    if (disc >= 0) {
-      const double sq = std::sqrt(disc);
-      // The numerically stable pair of roots.
-      const double q = -0.5 * (qb + std::copysign(sq, qb));
-      const double roots[2] = {q / qa, q != 0 ? qc / q : q / qa};
-      for (double t : roots) {
-        const double h = h0 + t * dh;
-        if (h >= 0 && h <= height && rb + k * h >= 0) consider(t, 0);
-      }
-    }
-  } else if (qb != 0) {  // the ray runs parallel to a cone's slant: one root
-    const double t = -qc / qb;
-    const double h = h0 + t * dh;
-    if (h >= 0 && h <= height) consider(t, 0);
-  }
-  if (!open && std::fabs(dh) > 0) {
-    const double tBase = -h0 / dh, tCap = (height - h0) / dh;
-    const Vec3 pb = oPerp + dPerp * tBase, pc = oPerp + dPerp * tCap;
-    if (rb > 0 && dot(pb, pb) <= rb * rb) consider(tBase, 1);
-    if (rc > 0 && dot(pc, pc) <= rc * rc) consider(tCap, 2);
-  }
-  if (!found) return std::nullopt;
-  return best;
-}
-
-Vec3 frustumNormal(const Vec3& base, const Vec3& cap, double rb, double rc, const Vec3& p, int part) {
-  const Vec3 axisFull = cap - base;
-  const double height = length(axisFull);
-  const Vec3 a = axisFull / height;
-  if (part == 1) return -a;
-  if (part == 2) return a;
-  const double h = dot(p - base, a);
-  const Vec3 perp = (p - base) - a * h;
-  const double k = (rc - rb) / height;
-  const double r = rb + k * h;
-  // Gradient of |perp|^2 - r(h)^2, halved.
-  return normalize(perp - a * (r * k));
-}
-
 // ---------------------------------------------------------------- disc
 
 std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, double hi, double unit) {
@@ -175,12 +106,6 @@ struct Intersector {
   std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi, unitDir, unit); }
   std::optional<ShapeHit> operator()(const PlaneShape& p) const { return detail::hitPlane(p, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi, unit); }
-  std::optional<ShapeHit> operator()(const CylinderShape& c) const {
-    return hitFrustum(c.base, c.cap, c.radius, c.radius, c.open, ray, lo, hi, unit);
-  }
-  std::optional<ShapeHit> operator()(const ConeShape& c) const {
-    return hitFrustum(c.base, c.cap, c.baseRadius, c.capRadius, c.open, ray, lo, hi, unit);
-  }
   std::optional<ShapeHit> operator()(const DiscShape& d) const { return hitDisc(d, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const TriangleShape& t) const {
     if (t.normal == Vec3{}) return std::nullopt;
@@ -189,6 +114,20 @@ struct Intersector {
   std::optional<ShapeHit> operator()(const SmoothTriangleShape& t) const {
     if (t.normal == Vec3{}) return std::nullopt;
     return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi, unit);
+  }
+  std::optional<ShapeHit> operator()(const PovTriangleShape& t) const { return pov(t.p1, t.p2, t.p3, t.normal); }
+  std::optional<ShapeHit> operator()(const PovSmoothTriangleShape& t) const {
+    return pov(t.p1, t.p2, t.p3, t.normal);
+  }
+  std::optional<ShapeHit> operator()(const PovConeShape& c) const {
+    const auto h = hitPovCone(c, ray, lo, hi, unit);
+    if (!h) return std::nullopt;
+    return ShapeHit{h->t, h->part};
+  }
+  std::optional<ShapeHit> pov(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& n) const {
+    const auto t = hitPovTriangle(p1, p2, p3, n, ray, lo, hi, unit);
+    if (!t) return std::nullopt;
+    return ShapeHit{*t};
   }
 };
 
@@ -210,35 +149,18 @@ struct Reproject {
     error[axis] = 0;
     return {q, error};
   }
-  SurfacePoint operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
-  SurfacePoint operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
   SurfacePoint operator()(const DiscShape& d) const { return flatSurfacePoint(d.normal, d.center, p); }
   SurfacePoint operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   SurfacePoint operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  SurfacePoint operator()(const PovTriangleShape& t) const { return povTrianglePoint(t.p1, t.normal, p); }
+  SurfacePoint operator()(const PovSmoothTriangleShape& t) const { return povTrianglePoint(t.p1, t.normal, p); }
+  SurfacePoint operator()(const PovConeShape& c) const { return povConeSurfacePoint(c, p, hit.part); }
 
   // The barycentric combination of the corners (hit.u weights p2, hit.v weights p3).
   SurfacePoint tri(const Vec3& p1, const Vec3& p2, const Vec3& p3) const {
     const double b0 = 1 - hit.u - hit.v;
     const Vec3 q = p1 * b0 + p2 * hit.u + p3 * hit.v;
     return {q, (vabs(p1 * b0) + vabs(p2 * hit.u) + vabs(p3 * hit.v)) * errorGamma(8)};
-  }
-  SurfacePoint frustum(const Vec3& base, const Vec3& cap, double rb, double rc) const {
-    const Vec3 axisFull = cap - base;
-    const double height = length(axisFull);
-    const Vec3 a = axisFull / height;
-    const Vec3 slack = (vabs(base) + vabs(cap) + Vec3(std::max(rb, rc))) * errorGamma(16);
-    if (hit.part != 0) {  // a cap: the plane through its centre
-      const Vec3 at = hit.part == 1 ? base : cap;
-      const Vec3 q = p - a * dot(a, p - at);
-      return {q, vabs(q) * errorGamma(8) + slack};
-    }
-    const double h = dot(p - base, a);
-    const Vec3 perp = (p - base) - a * h;
-    const double len = length(perp);
-    const double r = rb + (rc - rb) * h / height;
-    if (!(len > 0) || !(r > 0)) return {p, vabs(p) * errorGamma(16) + slack};
-    const Vec3 q = base + a * h + perp * (r / len);  // radially onto the side
-    return {q, vabs(q) * errorGamma(8) + slack};
   }
 };
 
@@ -253,12 +175,6 @@ struct Normal {
     n[hit.part / 2] = hit.part % 2 ? 1.0 : -1.0;
     return n;
   }
-  Vec3 operator()(const CylinderShape& c) const {
-    return frustumNormal(c.base, c.cap, c.radius, c.radius, p, hit.part);
-  }
-  Vec3 operator()(const ConeShape& c) const {
-    return frustumNormal(c.base, c.cap, c.baseRadius, c.capRadius, p, hit.part);
-  }
   Vec3 operator()(const DiscShape& d) const { return d.normal; }
   Vec3 operator()(const TriangleShape& t) const { return t.normal; }
   Vec3 operator()(const SmoothTriangleShape& t) const {
@@ -266,6 +182,9 @@ struct Normal {
     const double len = length(n);
     return len > 0 ? n / len : t.normal;
   }
+  Vec3 operator()(const PovTriangleShape& t) const { return t.normal; }
+  Vec3 operator()(const PovSmoothTriangleShape& t) const { return povSmoothNormal(t, p); }
+  Vec3 operator()(const PovConeShape& c) const { return povConeNormal(c, p, hit.part); }
 };
 
 // Bounds of a disc of radius r around centre c perpendicular to unit axis a.
@@ -284,22 +203,17 @@ struct LocalBounds {
   }
   Bounds operator()(const PlaneShape&) const { return {}; }
   Bounds operator()(const BoxShape& b) const { return {b.lo, b.hi}; }
-  Bounds operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
-  Bounds operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
   Bounds operator()(const DiscShape& d) const { return discBounds(d.center, d.normal, std::sqrt(d.radius2)); }
   Bounds operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   Bounds operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  Bounds operator()(const PovTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  Bounds operator()(const PovSmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
+  Bounds operator()(const PovConeShape& c) const { return povConeBounds(c); }
   static Bounds tri(const Vec3& a, const Vec3& b, const Vec3& c) {
     Bounds r;
     r.extend(a);
     r.extend(b);
     r.extend(c);
-    return r;
-  }
-  static Bounds frustum(const Vec3& base, const Vec3& cap, double rb, double rc) {
-    const Vec3 a = normalize(cap - base);
-    Bounds r = discBounds(base, a, rb);
-    r.extend(discBounds(cap, a, rc));
     return r;
   }
 };
@@ -314,20 +228,12 @@ struct Inside {
   bool operator()(const BoxShape& b) const {
     return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
   }
-  bool operator()(const CylinderShape& c) const { return frustum(c.base, c.cap, c.radius, c.radius); }
-  bool operator()(const ConeShape& c) const { return frustum(c.base, c.cap, c.baseRadius, c.capRadius); }
   bool operator()(const DiscShape& d) const { return dot(d.normal, p - d.center) < 0; }
   bool operator()(const TriangleShape&) const { return false; }
   bool operator()(const SmoothTriangleShape&) const { return false; }
-  bool frustum(const Vec3& base, const Vec3& cap, double rb, double rc) const {
-    const double height = length(cap - base);
-    const Vec3 a = (cap - base) / height;
-    const double h = dot(p - base, a);
-    if (h < 0 || h > height) return false;
-    const Vec3 perp = (p - base) - a * h;
-    const double r = rb + (rc - rb) * h / height;
-    return dot(perp, perp) < r * r;
-  }
+  bool operator()(const PovTriangleShape&) const { return false; }
+  bool operator()(const PovSmoothTriangleShape&) const { return false; }
+  bool operator()(const PovConeShape& c) const { return povConeInside(c, p); }
 };
 
 }  // namespace
@@ -354,7 +260,12 @@ SurfacePoint Primitive::surfacePoint(const Ray& ray, const ShapeHit& hit) const 
     }
     error[i] = (1 + errorGamma(3)) * carried + errorGamma(3) * rounding;
   }
-  return {m.applyPoint(sp.p), error};
+  const Vec3 q = m.applyPoint(sp.p);
+  if (!std::holds_alternative<PovConeShape>(shape)) return {q, error};
+  // Shaded where POV-Ray's hit point is, origin + t * dir in world space; q, on the
+  // surface within `error`, bounds how far that point is from it.
+  const Vec3 at = ray.at(hit.t);
+  return {at, (vabs(at - q) + error) * (1 + errorGamma(2))};
 }
 
 Vec3 Primitive::normal(const Ray& ray, const ShapeHit& hit) const {

@@ -13,6 +13,8 @@
 #include "core/ray.h"
 #include "core/transform.h"
 #include "geometry/bounds.h"
+#include "geometry/pov_cone.h"
+#include "geometry/pov_triangle.h"
 #include "geometry/robust.h"
 
 namespace pvrt {
@@ -29,14 +31,16 @@ inline constexpr double kMaxDistance = 1e7;       // every hit farther than this
 struct SphereShape { Vec3 center; double radius; };
 struct PlaneShape { Vec3 normal; double distance; };  // unit normal; n.X = d
 struct BoxShape { Vec3 lo, hi; };
-struct CylinderShape { Vec3 base, cap; double radius; bool open; };
-struct ConeShape { Vec3 base; double baseRadius; Vec3 cap; double capRadius; bool open; };
 struct DiscShape { Vec3 center, normal; double radius2, hole2; };  // unit normal, squared radii
+// A mesh's triangles (watertight test); lone triangles are PovTriangleShape and
+// PovSmoothTriangleShape (geometry/pov_triangle.h).
 struct TriangleShape { Vec3 p1, p2, p3; Vec3 normal; };          // unit face normal
 struct SmoothTriangleShape { Vec3 p1, p2, p3; Vec3 n1, n2, n3; Vec3 normal; };
 
-using Shape = std::variant<SphereShape, PlaneShape, BoxShape, CylinderShape, ConeShape, DiscShape,
-                           TriangleShape, SmoothTriangleShape>;
+// Cylinders and cones are PovConeShape (geometry/pov_cone.h): POV-Ray's canonical shape,
+// always with its transform.
+using Shape = std::variant<SphereShape, PlaneShape, BoxShape, PovConeShape, DiscShape, TriangleShape,
+                           SmoothTriangleShape, PovTriangleShape, PovSmoothTriangleShape>;
 
 // The nearest hit of one primitive: its distance along the world ray and whatever the
 // shape needs later to compute its normal (face of a box, part of a cylinder, ...).

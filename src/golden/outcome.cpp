@@ -55,6 +55,7 @@ void saveOutcome(const Outcome& o, const std::string& resultsDir) {
       {"size_mismatch", r.sizeMismatch ? "1" : "0"},
       {"max_levels", std::to_string(o.tolerance.limits.maxLevels)},
       {"max_fraction_over_1", fmt::format("{}", o.tolerance.limits.maxFractionOver1)},
+      {"max_off_by_1", std::to_string(o.tolerance.limits.maxOffBy1)},
       {"reason", o.tolerance.reason}, {"origin", o.tolerance.origin},
       {"image", o.image}, {"reference", o.reference}, {"seconds", fmt::format("{:.3f}", o.seconds)}};
   const std::string path = resultsDir + "/" + o.name + ".tsv", tmp = path + ".tmp";
@@ -101,6 +102,7 @@ std::vector<Outcome> loadOutcomes(const std::string& resultsDir) {
     r.sizeMismatch = kv["size_mismatch"] == "1";
     o.tolerance.limits.maxLevels = int(num("max_levels"));
     o.tolerance.limits.maxFractionOver1 = num("max_fraction_over_1");
+    o.tolerance.limits.maxOffBy1 = long(num("max_off_by_1"));
     o.tolerance.reason = kv["reason"];
     o.tolerance.origin = kv["origin"];
     o.image = kv["image"];
@@ -127,9 +129,11 @@ void judge(Outcome& o) {
   if (r.sizeMismatch) o.message = "the images differ in size";
   else if (o.passed && r.over0 == 0) o.message = "identical";
   else
-    o.message = fmt::format("{}: max {} levels (limit {}), {} of {} channels over 1 level (limit {:.4f}%)",
+    o.message = fmt::format("{}: max {} levels (limit {}), {} of {} channels over 1 level (limit {:.4f}%), {} off by 1"
+                            " (limit {})",
                             o.passed ? "within tolerance" : "over tolerance", r.maxError, t.maxLevels, r.over1,
-                            r.channels, t.maxFractionOver1 * 100);
+                            r.channels, t.maxFractionOver1 * 100, r.over0 - r.over1,
+                            t.maxOffBy1 < 0 ? "any" : std::to_string(t.maxOffBy1));
 }
 
 }  // namespace pvrt::golden

@@ -214,8 +214,9 @@ void writeHtmlReport(const std::vector<Outcome>& outcomes, const std::string& pa
     }
     const CompareResult& r = x->stats;
     const Tolerance& t = x->tolerance;
-    const std::string tolerance = fmt::format("&le; {} levels, &le; {:.4f}% over 1{}", t.limits.maxLevels,
+    const std::string tolerance = fmt::format("&le; {} levels, &le; {:.4f}% over 1{}{}", t.limits.maxLevels,
                                               t.limits.maxFractionOver1 * 100,
+                                              t.limits.maxOffBy1 < 0 ? "" : fmt::format(", &le; {} off by 1", t.limits.maxOffBy1),
                                               t.reason.empty() ? "" : "<br><i>" + escape(t.origin + ": " + t.reason) + "</i>");
     h << fmt::format("<tr class={}><td>{}</td><td data-v={}><b>{}</b><pre>{}</pre></td>", x->passed ? "pass" : "fail",
                      escape(x->name), x->passed ? 1 : 0, x->passed ? "PASS" : "FAIL", escape(x->message));

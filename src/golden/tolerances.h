@@ -1,5 +1,7 @@
 // reference/tolerances.tsv: thresholds looser than the default, each with its reason.
-//   scene  max_levels  max_fraction_over_1  reason
+//   scene  max_levels  max_fraction_over_1  [max_off_by_1]  reason
+// (the max_off_by_1 column is there when the header line names it; without it, any number of
+// channels may be off by 1).
 // A line whose scene is `*` sets the suite's own default. A line without a reason is an
 // error: a tolerance nobody can explain is a bug hidden, not a threshold.
 #pragma once

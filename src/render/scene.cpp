@@ -73,13 +73,14 @@ struct PrimitiveSink {
 
 class PrimitiveBuilder {
  public:
-  PrimitiveBuilder(PrimitiveSink& out, uint32_t object, bool noShadow, const Affine& xf)
-      : out_(out), object_(object), noShadow_(noShadow), xf_(xf), identity_(xf.isIdentity()) {}
+  PrimitiveBuilder(PrimitiveSink& out, uint32_t object, bool noShadow, const TransformList& steps)
+      : out_(out), object_(object), noShadow_(noShadow), steps_(steps), xf_(steps.combined()),
+        identity_(xf_.isIdentity()) {}
 
   void operator()(const SphereDesc& s) {
     const double k = similarityScale(xf_);
-    if (k > 0) return add(SphereShape{xf_.applyPoint(s.center), s.radius * k}, false);
-    add(SphereShape{s.center, s.radius}, true);
+    if (k > 0) add(SphereShape{xf_.applyPoint(s.center), s.radius * k}, false);
+    else add(SphereShape{s.center, s.radius}, true);
   }
   void operator()(const PlaneDesc& p) {
     const Vec3 n = unitDirection(p.normal);
@@ -96,76 +97,111 @@ class PrimitiveBuilder {
   void operator()(const BoxDesc& b) {
     if (isDiagonal(xf_)) {
       const Vec3 c1 = xf_.applyPoint(b.corner1), c2 = xf_.applyPoint(b.corner2);
-      return add(BoxShape{vmin(c1, c2), vmax(c1, c2)}, false);
+      add(BoxShape{vmin(c1, c2), vmax(c1, c2)}, false);
+      return;
     }
     add(BoxShape{vmin(b.corner1, b.corner2), vmax(b.corner1, b.corner2)}, true);
   }
-  void operator()(const CylinderDesc& c) {
-    add(CylinderShape{c.base, c.cap, c.radius, c.open}, !identity_);
-  }
-  void operator()(const ConeDesc& c) {
-    add(ConeShape{c.base, c.baseRadius, c.cap, c.capRadius, c.open}, !identity_);
-  }
+  // Cylinders and cones in POV-Ray's canonical space, through its transform composed as its
+  // parser composes it: their caps then tie with a plane as POV-Ray's do.
+  void operator()(const CylinderDesc& c) { povCone(placeCylinder(c.base, c.cap, c.radius, c.open)); }
+  void operator()(const ConeDesc& c) { povCone(placeCone(c.base, c.baseRadius, c.cap, c.capRadius, c.open)); }
   void operator()(const DiscDesc& d) {
     add(DiscShape{d.center, unitDirection(d.normal), d.radius * d.radius, d.holeRadius * d.holeRadius},
         !identity_);
   }
-  void operator()(const TriangleDesc& t) { triangle(t, false); }
-  void operator()(const SmoothTriangleRef& t) { smooth(*t, false); }
+  void operator()(const TriangleDesc& t) {
+    PovTriangleBuilder b(t.p1, t.p2, t.p3);
+    povSteps(b);
+    PovTriangleShape shape = b.flat();
+    if (b.degenerate()) shape.normal = Vec3{};  // never hit
+    add(shape, false);
+  }
+  void operator()(const SmoothTriangleRef& t) {
+    PovTriangleBuilder b(t->p1, t->n1, t->p2, t->n2, t->p3, t->n3);
+    povSteps(b);
+    // POV-Ray drops a lone smooth_triangle of zero area or whose vertex normals are not all
+    // strictly on one side of its face ("Degenerate triangle").
+    if (!b.degenerate()) add(b.smooth(), false);
+  }
   void operator()(const MeshDesc& m) {
-    for (const auto& t : m.triangles) triangle(t, true);
-    for (const auto& t : m.smoothTriangles) smooth(t, true);
+    for (const auto& t : m.triangles) meshTriangle(t);
+    for (const auto& t : m.smoothTriangles) meshSmoothTriangle(t);
   }
 
  private:
-  Vec3 point(const Vec3& p, bool single) const {
-    const Vec3 q = single ? toFloat(p) : p;
+  void povCone(PovConePlacement placed) {
+    for (const TransformStep& step : steps_.steps) placed.transform.then(povStep(step));
+    if (add(placed.shape, false)) primitive().transform = share(placed.transform.toTransform());
+  }
+  // One transform written, as POV-Ray's parser makes it.
+  static PovTransform povStep(const TransformStep& step) {
+    switch (step.kind) {
+      case TransformStep::Kind::Scale: return PovTransform::scaling(step.v);
+      case TransformStep::Kind::Translate: return PovTransform::translation(step.v);
+      case TransformStep::Kind::Rotate: return PovTransform::rotation(step.v);
+      case TransformStep::Kind::Matrix: break;
+    }
+    return PovTransform::matrixOf(step.affine());  // the loader has refused singular matrices
+  }
+  // A lone triangle's transforms, one at a time as POV-Ray's parser applies them.
+  void povSteps(PovTriangleBuilder& b) const {
+    for (const TransformStep& step : steps_.steps) {
+      switch (step.kind) {
+        case TransformStep::Kind::Scale: b.scale(step.v); break;
+        case TransformStep::Kind::Translate: b.translate(step.v); break;
+        case TransformStep::Kind::Rotate:
+        case TransformStep::Kind::Matrix: {
+          const Transform t = povStep(step).toTransform();
+          b.transform(t.toWorld, t.toObject);
+          break;
+        }
+      }
+    }
+  }
+  // A mesh's vertex: single precision as POV-Ray stores it, then the object's transform.
+  Vec3 point(const Vec3& p) const {
+    const Vec3 q = toFloat(p);
     return identity_ ? q : xf_.applyPoint(q);
   }
-  // A vertex normal: unit in object space, then carried by the inverse transpose and NOT
-  // renormalised, so that interpolating and then normalising equals POV-Ray's
+  // A mesh's vertex normal: unit in object space, then carried by the inverse transpose and
+  // NOT renormalised, so that interpolating and then normalising equals POV-Ray's
   // interpolate-in-object-space-then-transform under non-uniform scales and shears.
-  Vec3 normal(const Vec3& n, bool single) const {
-    const Vec3 q = unitDirection(single ? toFloat(rescaled(n)) : n);
+  Vec3 normal(const Vec3& n) const {
+    const Vec3 q = unitDirection(toFloat(rescaled(n)));
     return identity_ ? q : xf_.inverse()->applyTransposed(q);
   }
-  void triangle(const TriangleDesc& t, bool single) {
-    add(makeTriangle(point(t.p1, single), point(t.p2, single), point(t.p3, single)), false);
+  void meshTriangle(const TriangleDesc& t) { add(makeTriangle(point(t.p1), point(t.p2), point(t.p3)), false); }
+  void meshSmoothTriangle(const SmoothTriangleDesc& t) {
+    // POV-Ray's mesh parser makes a triangle whose vertex normals all agree a flat one
+    // (with the geometric normal, whatever the normals said). Unlike a lone one, a mesh's
+    // smooth triangle is kept whatever its normals.
+    const Vec3 a = normalize(toFloat(rescaled(t.n1))), b = normalize(toFloat(rescaled(t.n2))),
+               c = normalize(toFloat(rescaled(t.n3)));
+    if (a == b && b == c) return meshTriangle(TriangleDesc{t.p1, t.p2, t.p3, t.loc});
+    const Vec3 p1 = point(t.p1), p2 = point(t.p2), p3 = point(t.p3);
+    add(SmoothTriangleShape{p1, p2, p3, normal(t.n1), normal(t.n2), normal(t.n3), makeTriangle(p1, p2, p3).normal},
+        false);
   }
-  void smooth(const SmoothTriangleDesc& t, bool single) {
-    if (single) {
-      // POV-Ray's mesh parser makes a triangle whose vertex normals all agree a flat one
-      // (with the geometric normal, whatever the normals said).
-      const Vec3 a = normalize(toFloat(rescaled(t.n1))), b = normalize(toFloat(rescaled(t.n2))),
-                 c = normalize(toFloat(rescaled(t.n3)));
-      if (a == b && b == c) return triangle(TriangleDesc{t.p1, t.p2, t.p3, t.loc}, true);
-    }
-    const Vec3 p1 = point(t.p1, single), p2 = point(t.p2, single), p3 = point(t.p3, single);
-    SmoothTriangleShape shape{p1, p2, p3, normal(t.n1, single), normal(t.n2, single), normal(t.n3, single),
-                              makeTriangle(p1, p2, p3).normal};
-    // POV-Ray drops a lone smooth_triangle whose vertex normals are not all strictly on one
-    // side of its face ("Degenerate triangle"); inside a mesh the triangle is kept.
-    if (!single) {
-      const double a = dot(shape.n1, shape.normal), b = dot(shape.n2, shape.normal),
-                   c = dot(shape.n3, shape.normal);
-      if (!((a > 0 && b > 0 && c > 0) || (a < 0 && b < 0 && c < 0))) return;
-    }
-    add(shape, false);
-  }
-  void add(Shape shape, bool keepTransform) {
+  // False when only counting.
+  bool add(Shape shape, bool keepTransform) {
     ++out_.made;
-    if (!out_.grow) return;
+    if (!out_.grow) return false;
     Primitive p{std::move(shape), nullptr, object_, object_, noShadow_};
     if (keepTransform && !identity_) {
       if (!shared_) shared_ = share(Transform::from(xf_));  // one for all the object's primitives
       p.transform = shared_;
     }
     out_.grow->push_back(std::move(p));
+    return true;
   }
+  // The primitive add() made last.
+  Primitive& primitive() { return out_.grow->back(); }
 
   PrimitiveSink& out_;
   uint32_t object_;
   bool noShadow_;
+  const TransformList& steps_;
   Affine xf_;
   bool identity_;
   SharedTransform shared_;
@@ -177,7 +213,7 @@ size_t primitiveCount(const ObjectDesc& o) {
   if (const MeshDesc* mesh = std::get_if<MeshDesc>(&o.shape)) return mesh->triangles.size() + mesh->smoothTriangles.size();
   if (!std::holds_alternative<SmoothTriangleRef>(o.shape)) return 1;
   PrimitiveSink count;
-  std::visit(PrimitiveBuilder(count, 0, o.noShadow, o.transforms.combined()), o.shape);
+  std::visit(PrimitiveBuilder(count, 0, o.noShadow, o.transforms), o.shape);
   return count.made;
 }
 
@@ -233,7 +269,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
     size_t k = first[b];
     for (size_t i = lo; i < hi; ++i) {
       made.clear();
-      std::visit(PrimitiveBuilder(sink, uint32_t(i), objects[i].noShadow, objects[i].transforms.combined()),
+      std::visit(PrimitiveBuilder(sink, uint32_t(i), objects[i].noShadow, objects[i].transforms),
                  objects[i].shape);
       Bounds box;
       for (Primitive& p : made) {

@@ -92,9 +92,18 @@ TEST(GoldenTolerances, RepositoryFileAndTheDefault) {
   const Tolerances t = readTolerances(PVRT_SOURCE_DIR "/reference/tolerances.tsv");
   EXPECT_EQ(t.of("fidelity_ior").limits.maxLevels, 20);
   EXPECT_FALSE(t.of("fidelity_ior").reason.empty());
-  EXPECT_EQ(t.of("paper1").limits.maxLevels, 2);
+  EXPECT_EQ(t.of("fidelity_ior").limits.maxOffBy1, 17);
+  // The corpus's own default tier (its `*` line): nothing over 1 level, nothing off by 1.
+  EXPECT_EQ(t.of("paper1").limits.maxLevels, 1);
   EXPECT_EQ(t.of("paper1").limits.maxFractionOver1, 0.0);
-  EXPECT_TRUE(t.of("paper1").reason.empty());
+  EXPECT_EQ(t.of("paper1").limits.maxOffBy1, 0);
+  EXPECT_FALSE(t.of("paper1").reason.empty());
+  // Without a file, the built-in default: nothing over 1 level, any number off by 1.
+  const Tolerances none = readTolerances(PVRT_SOURCE_DIR "/reference/no-such-file.tsv");
+  EXPECT_EQ(none.of("paper1").limits.maxLevels, 2);
+  EXPECT_EQ(none.of("paper1").limits.maxFractionOver1, 0.0);
+  EXPECT_EQ(none.of("paper1").limits.maxOffBy1, -1);
+  EXPECT_TRUE(none.of("paper1").reason.empty());
 }
 
 TEST(GoldenTolerances, SuiteDefaultAndMissingReason) {
@@ -103,7 +112,15 @@ TEST(GoldenTolerances, SuiteDefaultAndMissingReason) {
   EXPECT_EQ(t.of("anything").limits.maxLevels, 4);
   EXPECT_EQ(t.of("anything").reason, "noisy renderer");
   const std::string p = writeTemp("t2.tsv", head + "glass\t4\t0.5\t  \n");
-  EXPECT_EQ(errorOf([&] { readTolerances(p); }), p + ":2: error: glass: a tolerance needs its reason in the fourth field");
+  EXPECT_EQ(errorOf([&] { readTolerances(p); }), p + ":2: error: glass: a tolerance needs its reason in the last field");
+  // With the max_off_by_1 column the reason is the fifth field.
+  const std::string five = "scene\tmax_levels\tmax_fraction_over_1\tmax_off_by_1\treason\n";
+  const Tolerances u = readTolerances(writeTemp("t4.tsv", five + "glass\t1\t0\t3\tthree channels\n"));
+  EXPECT_EQ(u.of("glass").limits.maxOffBy1, 3);
+  EXPECT_EQ(u.of("glass").reason, "three channels");
+  const std::string r = writeTemp("t5.tsv", five + "glass\t1\t0\tthree channels\n");
+  EXPECT_EQ(errorOf([&] { readTolerances(r); }),
+            r + ":2: error: max_off_by_1 \"three channels\" is not a whole number from 0 to 1000000");
   const std::string q = writeTemp("t3.tsv", head + "glass\t4\t2\twhy\n");
   EXPECT_EQ(errorOf([&] { readTolerances(q); }), q + ":2: error: max_fraction_over_1 \"2\" is not a number from 0 to 1");
 }

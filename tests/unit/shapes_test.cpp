@@ -299,11 +299,26 @@ TEST(Shapes, BoxWithSwappedCornersBuiltFromAScene) {
 
 // ---------------------------------------------------------------- cylinder
 
-const CylinderShape kCyl{{0, 0, 0}, {0, 2, 0}, 1, false};  // y in [0,2], radius 1
+// Cylinders and cones as the scene builder makes them: POV-Ray's canonical shape with its
+// transform (geometry/pov_cone.h). POV-Ray reads the written base into the end at canonical
+// z = 1 (part 2) and the written cap into the other (part 1), wider end first for cones.
+Primitive placed(const PovConePlacement& p) {
+  Primitive prim;
+  prim.shape = p.shape;
+  prim.transform = share(p.transform.toTransform());
+  return prim;
+}
+Primitive cylinder(const Vec3& base, const Vec3& cap, double radius, bool open = false) {
+  return placed(placeCylinder(base, cap, radius, open));
+}
+Primitive cone(const Vec3& base, double baseRadius, const Vec3& cap, double capRadius, bool open = false) {
+  return placed(placeCone(base, baseRadius, cap, capRadius, open));
+}
+const Primitive kCyl = cylinder({0, 0, 0}, {0, 2, 0}, 1);  // y in [0,2], radius 1
 
 // From x=-5 at mid height: the side x=-1 at t=4, normal -x.
 TEST(Shapes, CylinderSideHitAndNormal) {
-  const Primitive c = prim(kCyl);
+  const Primitive& c = kCyl;
   const Ray r{{-5, 1, 0}, kX};
   const auto h = hit(c, r);
   ASSERT_TRUE(h);
@@ -318,27 +333,26 @@ TEST(Shapes, CylinderSideHitAndNormal) {
   expectVecNear(c.normal(r2, *h2), {-0.8, 0, 0.6}, 1e-12);
 }
 
-// Down the axis from y=5: a closed cylinder's top cap (part 2) at y=2, t=3, normal +y;
-// an open one has no caps and its side is parallel to the ray, so nothing is hit.
+// Down the axis from y=5: a closed cylinder's top cap (the written cap, part 1) at y=2,
+// t=3, normal +y; an open one has no caps and its side is parallel to the ray, so nothing
+// is hit.
 TEST(Shapes, CylinderClosedVersusOpenAlongTheAxis) {
-  const Primitive closed = prim(kCyl);
+  const Primitive& closed = kCyl;
   const Ray down{{0, 5, 0}, -kY};
   const auto h = hit(closed, down);
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 3.0, kTol);
-  EXPECT_EQ(h->part, 2);
+  EXPECT_EQ(h->part, 1);
   expectVecNear(closed.normal(down, *h), kY);
-  // Upward from below: the base cap (part 1) at y=0, t=5, normal -y.
+  // Upward from below: the written base (part 2) at y=0, t=5, normal -y.
   const Ray up{{0.5, -5, 0}, kY};
   const auto hb = hit(closed, up);
   ASSERT_TRUE(hb);
   EXPECT_NEAR(hb->t, 5.0, kTol);
-  EXPECT_EQ(hb->part, 1);
+  EXPECT_EQ(hb->part, 2);
   expectVecNear(closed.normal(up, *hb), -kY);
 
-  CylinderShape openShape = kCyl;
-  openShape.open = true;
-  const Primitive open = prim(openShape);
+  const Primitive open = cylinder({0, 0, 0}, {0, 2, 0}, 1, true);
   EXPECT_FALSE(hit(open, down));
   EXPECT_FALSE(hit(open, up));
   // The side is still there: from inside an open tube the ray leaves through it at t=1.
@@ -350,7 +364,7 @@ TEST(Shapes, CylinderClosedVersusOpenAlongTheAxis) {
 }
 
 TEST(Shapes, CylinderMissesAboveAndBeside) {
-  const Primitive c = prim(kCyl);
+  const Primitive& c = kCyl;
   EXPECT_FALSE(hit(c, {{-5, 2.5, 0}, kX}));  // above the top
   EXPECT_FALSE(hit(c, {{-5, 1, 1.5}, kX}));  // beside it
   EXPECT_FALSE(hit(c, {{1.5, 5, 0}, -kY}));  // parallel to the axis, outside the radius
@@ -358,7 +372,7 @@ TEST(Shapes, CylinderMissesAboveAndBeside) {
 
 // From the axis the ray leaves through the side at distance r = 1.
 TEST(Shapes, CylinderRayFromInside) {
-  const Primitive c = prim(kCyl);
+  const Primitive& c = kCyl;
   const auto h = hit(c, {{0, 1, 0}, normalize({1, 0, 1})});
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 1.0, 1e-12);
@@ -366,7 +380,7 @@ TEST(Shapes, CylinderRayFromInside) {
 
 // Bounds: the caps are discs of radius 1 in y=0 and y=2. Inside: within radius and height.
 TEST(Shapes, CylinderBoundsAndInside) {
-  const Primitive c = prim(kCyl);
+  const Primitive& c = kCyl;
   expectVecNear(c.bounds().lo, {-1, 0, -1});
   expectVecNear(c.bounds().hi, {1, 2, 1});
   EXPECT_TRUE(c.inside({0.5, 1, 0.5}));
@@ -377,13 +391,13 @@ TEST(Shapes, CylinderBoundsAndInside) {
 // ---------------------------------------------------------------- cone
 
 // Base <0,0,0> radius 1, cap <0,1,0> radius 0.5: r(h) = 1 - h/2.
-const ConeShape kCone{{0, 0, 0}, 1, {0, 1, 0}, 0.5, false};
+const Primitive kCone = cone({0, 0, 0}, 1, {0, 1, 0}, 0.5);
 
 // At height 0.5 the radius is 0.75: a ray from x=-5 hits x=-0.75 at t=4.25. The surface
 // is F = x^2 + z^2 - r(y)^2 = 0 with gradient (2x, -2 r r'(y), 2z) = (-1.5, 0.75, 0) there
 // (r' = -1/2), i.e. the normal (-2, 1, 0)/sqrt(5): tilted up because the cone narrows.
 TEST(Shapes, ConeSideHitAndGradientNormal) {
-  const Primitive c = prim(kCone);
+  const Primitive& c = kCone;
   const Ray r{{-5, 0.5, 0}, kX};
   const auto h = hit(c, r);
   ASSERT_TRUE(h);
@@ -395,7 +409,7 @@ TEST(Shapes, ConeSideHitAndGradientNormal) {
 // Along the axis the caps are hit when closed (top at y=1, base at y=0); an open cone's
 // side is never reached on the axis (its apex, r=0, would be at y=2, outside the frustum).
 TEST(Shapes, ConeCapsWhenClosedAndNoneWhenOpen) {
-  const Primitive closed = prim(kCone);
+  const Primitive& closed = kCone;
   const Ray down{{0, 5, 0}, -kY};
   const auto top = hit(closed, down);
   ASSERT_TRUE(top);
@@ -407,9 +421,7 @@ TEST(Shapes, ConeCapsWhenClosedAndNoneWhenOpen) {
   EXPECT_NEAR(base->t, 5.0, kTol);
   expectVecNear(closed.normal(up, *base), -kY);
 
-  ConeShape openShape = kCone;
-  openShape.open = true;
-  const Primitive open = prim(openShape);
+  const Primitive open = cone({0, 0, 0}, 1, {0, 1, 0}, 0.5, true);
   EXPECT_FALSE(hit(open, down));
   // Upward at x=0.8 the open cone's side is hit from inside where r(y) = 0.8: y = 0.4.
   const auto side = hit(open, up);
@@ -419,7 +431,7 @@ TEST(Shapes, ConeCapsWhenClosedAndNoneWhenOpen) {
 
 // A pointed cone (cap radius 0, POV-Ray's default) from the side at height 0.5: r = 0.5.
 TEST(Shapes, PointedConeAndMisses) {
-  const Primitive c = prim(ConeShape{{0, 0, 0}, 1, {0, 1, 0}, 0, false});
+  const Primitive c = cone({0, 0, 0}, 1, {0, 1, 0}, 0);
   const auto h = hit(c, {{-5, 0.5, 0}, kX});
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 4.5, 1e-12);
@@ -622,7 +634,10 @@ TEST(Shapes, ScaledSphereHitAndNormal) {
 // the origin along +z the base cap is at t=3 with normal -z; the far side of the ray's
 // path from inside (origin (0,0,4)) is the top cap at t=1.
 TEST(Shapes, RotatedTranslatedCylinder) {
-  const Primitive c = prim(kCyl, Affine::rotate({90, 0, 0}).then(Affine::translate({0, 0, 3})));
+  PovConePlacement moved = placeCylinder({0, 0, 0}, {0, 2, 0}, 1, false);
+  moved.transform.then(PovTransform::rotation({90, 0, 0}));
+  moved.transform.then(PovTransform::translation({0, 0, 3}));
+  const Primitive c = placed(moved);
   const Ray r{{0, 0, 0}, kZ};
   const auto h = hit(c, r);
   ASSERT_TRUE(h);
