@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace pvrt {
@@ -19,12 +20,18 @@ std::string rgbft(const FilterColor& c) {
 
 class Writer {
  public:
-  explicit Writer(const SceneDesc& s) : s_(s) {}
+  Writer(const SceneDesc& s, const PovRecipe& r) : s_(s), r_(r) {}
 
   PovExport run() {
     // The file name only: the export must not depend on where the repository lies.
     out_ += "// Exported by pvrt from " + std::filesystem::path(s_.path).filename().string() + "\n";
-    if (s_.image) out_ += fmt::format("// Render with: +W{} +H{}\n", s_.image->width, s_.image->height);
+    // The sampling recipe with the resolution: the one command line that gives pvrt's image.
+    const std::string pov = std::filesystem::path(r_.povName).filename().string();
+    const std::string png = std::filesystem::path(pov).replace_extension(".png").string();
+    const int width = s_.image ? s_.image->width : 320, height = s_.image ? s_.image->height : 240;
+    out_ += fmt::format("// Render as `pvrt render --sampler pov --spp {}` does: {}\n", std::max(1, r_.aaDepth * r_.aaDepth),
+                        povCommandLine(pov, png, width, height, r_.aaDepth));
+    out_ += "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: --spp 1)\n";
     out_ += "#version 3.7;\n";
     const GlobalSettings& g = s_.globals;
     out_ += "global_settings { assumed_gamma 1.0 max_trace_level " + std::to_string(g.maxTraceLevel) +
@@ -194,13 +201,14 @@ class Writer {
   }
 
   const SceneDesc& s_;
+  const PovRecipe& r_;
   std::string out_;
   std::vector<std::string> warnings_;
 };
 
 }  // namespace
 
-PovExport exportPov(const SceneDesc& scene) { return Writer(scene).run(); }
+PovExport exportPov(const SceneDesc& scene, const PovRecipe& recipe) { return Writer(scene, recipe).run(); }
 
 std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth) {
   std::string aa = aaDepth > 0 ? fmt::format("+A0.0 +AM1 +R{} -J", aaDepth) : "-A";

@@ -1,6 +1,7 @@
 #include "render/time_budget.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -9,21 +10,61 @@
 namespace pvrt {
 
 namespace {
-// The pilot renders this share of the pixels (a quarter of each side), and is rendered
-// again at four times the samples until it lasts long enough to be timed.
-constexpr int kPilotDivisor = 4;
-constexpr double kPilotMinSeconds = 0.02;
-constexpr int kPilotMaxSamples = 64;
-}  // namespace
+// A pilot renders every kPilotStride-th tile of kPilotTile pixels: a seventeenth of the
+// image, spread over it (17 shares no factor with the usual tile counts per row, so the
+// tiles fall on diagonals, not in columns).
+constexpr int kPilotStride = 17;
+constexpr int kPilotTile = 16;
+// At most this many pilots; and none that could cost more than this share of what is left
+// (bounded by the dearest so far, in proportion to the rays).
+constexpr int kMaxPilots = 6;
+constexpr double kPilotShareOfLeft = 0.1;
 
-double predictRenderSeconds(SamplerKind kind, int samplesPerPixel, long pixels, double secondsPerSample) {
-  const PixelSampler sampler(SamplerSettings{kind, samplesPerPixel, 0});
-  return double(pixels) * double(sampler.count()) * secondsPerSample;
+double rayCount(SamplerKind kind, int samplesPerPixel) {
+  return double(PixelSampler(SamplerSettings{kind, samplesPerPixel, 0}).count());
 }
 
-int chooseSamplesPerPixel(SamplerKind kind, long pixels, double secondsPerSample, double budgetSeconds,
+// Sorted by rays, one point per ray count (the last measured), and made non-decreasing in
+// cost, so that the prediction is monotone in c.
+std::vector<CostPoint> ordered(std::vector<CostPoint> points) {
+  std::stable_sort(points.begin(), points.end(), [](const CostPoint& a, const CostPoint& b) { return a.rays < b.rays; });
+  std::vector<CostPoint> out;
+  for (const CostPoint& p : points) {
+    if (!out.empty() && out.back().rays == p.rays) out.back() = p;
+    else out.push_back(p);
+  }
+  for (size_t i = 1; i < out.size(); ++i) out[i].secondsPerPixel = std::max(out[i].secondsPerPixel, out[i - 1].secondsPerPixel);
+  return out;
+}
+
+double along(const CostPoint& a, const CostPoint& b, double rays) {
+  return a.secondsPerPixel + (b.secondsPerPixel - a.secondsPerPixel) * (rays - a.rays) / (b.rays - a.rays);
+}
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+double predictSecondsPerPixel(const std::vector<CostPoint>& unordered, double rays) {
+  const std::vector<CostPoint> p = ordered(unordered);
+  if (p.empty()) return 0;
+  const CostPoint& last = p.back();
+  if (p.size() == 1 || rays <= p.front().rays) return p.front().secondsPerPixel * rays / p.front().rays;
+  if (rays >= last.rays) {
+    const CostPoint& before = p[p.size() - 2];
+    const double slope = std::clamp((last.secondsPerPixel - before.secondsPerPixel) / (last.rays - before.rays), 0.0,
+                                    last.secondsPerPixel / last.rays);
+    return last.secondsPerPixel + slope * (rays - last.rays);
+  }
+  const auto hi = std::lower_bound(p.begin(), p.end(), rays, [](const CostPoint& q, double r) { return q.rays < r; });
+  return along(*(hi - 1), *hi, rays);
+}
+
+int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostPoint>& points, double budgetSeconds,
                           int maxSamplesPerPixel) {
-  auto fits = [&](int n) { return predictRenderSeconds(kind, n * n, pixels, secondsPerSample) <= budgetSeconds; };
+  auto fits = [&](int n) {
+    return double(pixels) * predictSecondsPerPixel(points, rayCount(kind, n * n)) <= budgetSeconds;
+  };
   // Binary search on the side n of the grid: the predicted time grows with n.
   int lo = 1, hi = std::max(1, int(std::floor(std::sqrt(double(maxSamplesPerPixel)))));
   while (hi * hi > maxSamplesPerPixel) --hi;
@@ -37,36 +78,54 @@ int chooseSamplesPerPixel(SamplerKind kind, long pixels, double secondsPerSample
 }
 
 BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, double budgetSeconds,
-                         int maxSamplesPerPixel) {
+                         double spentSeconds, int maxSamplesPerPixel) {
   if (!(budgetSeconds > 0) || !std::isfinite(budgetSeconds))
     throw Error(ExitCode::Usage, "--time-budget must be a positive number of seconds, got " +
                                      std::to_string(budgetSeconds));
-  BudgetPlan plan;
+  const SamplerKind kind = settings.sampler.kind;
+  const WorkItem area = renderArea(settings);
+  const long pixels = area.pixels();
   RenderSettings pilot = settings;
-  pilot.width = std::max(1, settings.width / kPilotDivisor);
-  pilot.height = std::max(1, settings.height / kPilotDivisor);
+  pilot.itemStride = kPilotStride;
+  pilot.schedule.strategy = Strategy::Tiles;
+  pilot.schedule.tileSize = kPilotTile;
   pilot.loadMap = false;
   pilot.progress = nullptr;
-  plan.pilotWidth = pilot.width;
-  plan.pilotHeight = pilot.height;
-  // Rays per pixel at c = 1 and 4 differ by the pov sampler's centre ray; the time per
-  // camera ray is what carries over, so the pilot divides by the sampler's count.
-  for (int c = 1;; c *= 4) {
+  pilot.announce = nullptr;
+
+  BudgetPlan plan;
+  double dearest = 0;  // wall seconds of the pilot with the most rays
+  auto run = [&](int c) {
     pilot.sampler.samplesPerPixel = c;
+    const auto t0 = Clock::now();
     const RenderResult r = render(scene, pilot);
-    plan.pilotSeconds += r.seconds;
-    plan.pilotSamplesPerPixel = c;
-    plan.secondsPerSample = r.seconds / (double(pilot.width) * pilot.height * PixelSampler(pilot.sampler).count());
-    if (r.cancelled || r.seconds >= kPilotMinSeconds || c >= kPilotMaxSamples ||
-        plan.pilotSeconds >= budgetSeconds / 4)
-      break;
+    const double seconds = since(t0);
+    long rendered = 0;
+    for (const WorkerStats& w : r.workers) rendered += w.pixels;
+    plan.pilotSeconds += seconds;
+    plan.pilotShare = double(rendered) / double(pixels);
+    plan.pilotSamples.push_back(c);
+    plan.points.push_back({rayCount(kind, c), seconds / double(std::max(rendered, 1L))});
+    dearest = seconds;
+    return !r.cancelled;
+  };
+  auto left = [&] { return budgetSeconds - spentSeconds - plan.pilotSeconds; };
+
+  bool going = run(1);
+  while (going && int(plan.pilotSamples.size()) < kMaxPilots) {
+    const double measured = plan.points.back().rays;  // pilots go up in rays
+    int c = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
+    // A pilot no dearer than its share of what is left, even if the cost were proportional.
+    while (c > 1 && dearest * rayCount(kind, c) / measured > kPilotShareOfLeft * left()) {
+      const int n = int(std::lround(std::sqrt(double(c))));
+      c = (n - 1) * (n - 1);
+    }
+    if (rayCount(kind, c) <= measured) break;  // between measured points: read off them
+    going = run(c);
   }
-  const long pixels = long(settings.width) * settings.height;
-  const double left = budgetSeconds - plan.pilotSeconds;
-  const SamplerKind kind = settings.sampler.kind;
-  plan.samplesPerPixel = chooseSamplesPerPixel(kind, pixels, plan.secondsPerSample, left, maxSamplesPerPixel);
-  plan.predictedSeconds = predictRenderSeconds(kind, plan.samplesPerPixel, pixels, plan.secondsPerSample);
-  plan.fits = plan.predictedSeconds <= left;
+  plan.samplesPerPixel = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
+  plan.predictedSeconds = double(pixels) * predictSecondsPerPixel(plan.points, rayCount(kind, plan.samplesPerPixel));
+  plan.fits = plan.predictedSeconds <= left();
   return plan;
 }
 
