@@ -20,10 +20,6 @@ constexpr int kPilotTile = 16;
 constexpr int kMaxPilots = 6;
 constexpr double kPilotShareOfLeft = 0.1;
 
-double rayCount(SamplerKind kind, int samplesPerPixel) {
-  return double(PixelSampler(SamplerSettings{kind, samplesPerPixel, 0}).count());
-}
-
 // Sorted by rays, one point per ray count (the last measured), and made non-decreasing in
 // cost, so that the prediction is monotone in c.
 std::vector<CostPoint> ordered(std::vector<CostPoint> points) {
@@ -45,6 +41,10 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
+double cameraRaysPerPixel(SamplerKind kind, int samplesPerPixel) {
+  return kind == SamplerKind::Pov && samplesPerPixel > 1 ? samplesPerPixel + 1.0 : double(samplesPerPixel);
+}
+
 double predictSecondsPerPixel(const std::vector<CostPoint>& unordered, double rays) {
   const std::vector<CostPoint> p = ordered(unordered);
   if (p.empty()) return 0;
@@ -63,7 +63,7 @@ double predictSecondsPerPixel(const std::vector<CostPoint>& unordered, double ra
 int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostPoint>& points, double budgetSeconds,
                           int maxSamplesPerPixel) {
   auto fits = [&](int n) {
-    return double(pixels) * predictSecondsPerPixel(points, rayCount(kind, n * n)) <= budgetSeconds;
+    return double(pixels) * predictSecondsPerPixel(points, cameraRaysPerPixel(kind, n * n)) <= budgetSeconds;
   };
   // Binary search on the side n of the grid: the predicted time grows with n.
   int lo = 1, hi = std::max(1, int(std::floor(std::sqrt(double(maxSamplesPerPixel)))));
@@ -105,7 +105,7 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
     plan.pilotSeconds += seconds;
     plan.pilotShare = double(rendered) / double(pixels);
     plan.pilotSamples.push_back(c);
-    plan.points.push_back({rayCount(kind, c), seconds / double(std::max(rendered, 1L))});
+    plan.points.push_back({cameraRaysPerPixel(kind, c), seconds / double(std::max(rendered, 1L))});
     dearest = seconds;
     return !r.cancelled;
   };
@@ -116,15 +116,15 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
     const double measured = plan.points.back().rays;  // pilots go up in rays
     int c = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
     // A pilot no dearer than its share of what is left, even if the cost were proportional.
-    while (c > 1 && dearest * rayCount(kind, c) / measured > kPilotShareOfLeft * left()) {
+    while (c > 1 && dearest * cameraRaysPerPixel(kind, c) / measured > kPilotShareOfLeft * left()) {
       const int n = int(std::lround(std::sqrt(double(c))));
       c = (n - 1) * (n - 1);
     }
-    if (rayCount(kind, c) <= measured) break;  // between measured points: read off them
+    if (cameraRaysPerPixel(kind, c) <= measured) break;  // between measured points: read off them
     going = run(c);
   }
   plan.samplesPerPixel = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
-  plan.predictedSeconds = double(pixels) * predictSecondsPerPixel(plan.points, rayCount(kind, plan.samplesPerPixel));
+  plan.predictedSeconds = double(pixels) * predictSecondsPerPixel(plan.points, cameraRaysPerPixel(kind, plan.samplesPerPixel));
   plan.fits = plan.predictedSeconds <= left();
   return plan;
 }

@@ -23,6 +23,10 @@ struct CostPoint {
   double secondsPerPixel = 0;
 };
 
+// PixelSampler(kind, c).count() without building the sampler's offsets (the search asks for
+// c up to 65536): c, and c + 1 for pov with c > 1 (its centre ray).
+double cameraRaysPerPixel(SamplerKind kind, int samplesPerPixel);
+
 // Seconds per pixel at `rays` camera rays from measured points (any order): the line through
 // the two nearest measured ray counts around it, the last two beyond the largest (never
 // less than the largest's cost, nor more steeply than in proportion to the rays), and in

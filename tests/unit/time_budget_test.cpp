@@ -18,6 +18,12 @@ const std::vector<CostPoint> kProportional = {{1, 0.01}};
 // 0.02 s a pixel whatever its rays, plus 0.001 s a ray: measured at 1 and 17 rays.
 const std::vector<CostPoint> kAffine = {{17, 0.037}, {1, 0.021}};
 
+TEST(TimeBudget, CameraRaysAreTheSamplersCount) {
+  for (SamplerKind kind : {SamplerKind::Pov, SamplerKind::Grid, SamplerKind::Jitter})
+    for (int c : {1, 4, 9, 16, 64, 1024})
+      EXPECT_EQ(cameraRaysPerPixel(kind, c), double(PixelSampler(SamplerSettings{kind, c, 0}).count())) << c;
+}
+
 TEST(TimeBudget, OnePointPredictsInProportionToTheRays) {
   EXPECT_DOUBLE_EQ(predictSecondsPerPixel(kProportional, 16), 0.16);
   EXPECT_DOUBLE_EQ(predictSecondsPerPixel(kProportional, 17), 0.17);
