@@ -18,7 +18,12 @@ constexpr int kPilotTile = 16;
 // At most this many pilots; and none that could cost more than this share of what is left
 // (bounded by the dearest so far, in proportion to the rays).
 constexpr int kMaxPilots = 6;
-constexpr double kPilotShareOfLeft = 0.1;
+constexpr double kPilotShareOfLeft = 0.25;
+constexpr double kPilotMinSeconds = 0.05;
+constexpr int kPilotMaxRepeats = 8;
+// Beyond the largest measured c, a ray costs at least this share of that c's cost per ray (on
+// paper1, user time: a ray added from c = 16 to 64 costs 0.98 of the mean at 64).
+constexpr double kMinSlopeShare = 0.5;
 
 // Sorted by rays, one point per ray count (the last measured), and made non-decreasing in
 // cost, so that the prediction is monotone in c.
@@ -52,8 +57,11 @@ double predictSecondsPerPixel(const std::vector<CostPoint>& unordered, double ra
   if (p.size() == 1 || rays <= p.front().rays) return p.front().secondsPerPixel * rays / p.front().rays;
   if (rays >= last.rays) {
     const CostPoint& before = p[p.size() - 2];
-    const double slope = std::clamp((last.secondsPerPixel - before.secondsPerPixel) / (last.rays - before.rays), 0.0,
-                                    last.secondsPerPixel / last.rays);
+    // Between half and all of the last point's cost per ray: measured on a shared machine, two
+    // close points can give any slope, and a flat one would send the next pilot to c = 65536.
+    const double perRay = last.secondsPerPixel / last.rays;
+    const double slope = std::clamp((last.secondsPerPixel - before.secondsPerPixel) / (last.rays - before.rays),
+                                    kMinSlopeShare * perRay, perRay);
     return last.secondsPerPixel + slope * (rays - last.rays);
   }
   const auto hi = std::lower_bound(p.begin(), p.end(), rays, [](const CostPoint& q, double r) { return q.rays < r; });
@@ -94,20 +102,28 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
   pilot.announce = nullptr;
 
   BudgetPlan plan;
-  double dearest = 0;  // wall seconds of the pilot with the most rays
+  double dearest = 0;  // wall seconds of one repetition of the pilot with the most rays
+  // A pilot is repeated until it has lasted kPilotMinSeconds: a few milliseconds of wall time
+  // on a shared machine say more of the other programs than of the render.
   auto run = [&](int c) {
     pilot.sampler.samplesPerPixel = c;
-    const auto t0 = Clock::now();
-    const RenderResult r = render(scene, pilot);
-    const double seconds = since(t0);
+    double seconds = 0;
     long rendered = 0;
-    for (const WorkerStats& w : r.workers) rendered += w.pixels;
+    bool cancelled = false;
+    int reps = 0;
+    for (; reps < kPilotMaxRepeats && seconds < kPilotMinSeconds && !cancelled; ++reps) {
+      const auto t0 = Clock::now();
+      const RenderResult r = render(scene, pilot);
+      seconds += since(t0);
+      for (const WorkerStats& w : r.workers) rendered += w.pixels;
+      cancelled = r.cancelled;
+    }
     plan.pilotSeconds += seconds;
-    plan.pilotShare = double(rendered) / double(pixels);
+    plan.pilotShare = double(rendered) / double(reps) / double(pixels);
     plan.pilotSamples.push_back(c);
     plan.points.push_back({cameraRaysPerPixel(kind, c), seconds / double(std::max(rendered, 1L))});
-    dearest = seconds;
-    return !r.cancelled;
+    dearest = seconds / reps;  // one repetition's
+    return !cancelled;
   };
   auto left = [&] { return budgetSeconds - spentSeconds - plan.pilotSeconds; };
 
@@ -115,6 +131,9 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
   while (going && int(plan.pilotSamples.size()) < kMaxPilots) {
     const double measured = plan.points.back().rays;  // pilots go up in rays
     int c = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
+    // One point says nothing of how the cost grows with c (proportionally, it would say c = 1
+    // where c = 4 fits: a ray at c = 1 costs about 3 of one at c >= 4); a second comes from c >= 4.
+    if (plan.points.size() == 1) c = std::max(c, std::min(4, maxSamplesPerPixel));
     // A pilot no dearer than its share of what is left, even if the cost were proportional.
     while (c > 1 && dearest * cameraRaysPerPixel(kind, c) / measured > kPilotShareOfLeft * left()) {
       const int n = int(std::lround(std::sqrt(double(c))));

@@ -28,9 +28,9 @@ struct CostPoint {
 double cameraRaysPerPixel(SamplerKind kind, int samplesPerPixel);
 
 // Seconds per pixel at `rays` camera rays from measured points (any order): the line through
-// the two nearest measured ray counts around it, the last two beyond the largest (never
-// less than the largest's cost, nor more steeply than in proportion to the rays), and in
-// proportion to the rays when there is one point.
+// the two nearest measured ray counts around it, the last two beyond the largest (rising by
+// half to all of the largest's cost per ray, whatever noise says), and in proportion to the
+// rays when there is one point.
 double predictSecondsPerPixel(const std::vector<CostPoint>& points, double rays);
 
 // The largest perfect square c <= maxSamplesPerPixel whose predicted time (pixels x seconds

@@ -15,8 +15,8 @@ namespace {
 // 100 pixels at 0.01 s per camera ray: one camera ray per pixel costs 1 s.
 constexpr long kPixels = 100;
 const std::vector<CostPoint> kProportional = {{1, 0.01}};
-// 0.02 s a pixel whatever its rays, plus 0.001 s a ray: measured at 1 and 17 rays.
-const std::vector<CostPoint> kAffine = {{17, 0.037}, {1, 0.021}};
+// 0.01 s a pixel whatever its rays, plus 0.001 s a ray: measured at 1 and 17 rays.
+const std::vector<CostPoint> kAffine = {{17, 0.027}, {1, 0.011}};
 
 TEST(TimeBudget, CameraRaysAreTheSamplersCount) {
   for (SamplerKind kind : {SamplerKind::Pov, SamplerKind::Grid, SamplerKind::Jitter})
@@ -30,14 +30,14 @@ TEST(TimeBudget, OnePointPredictsInProportionToTheRays) {
 }
 
 TEST(TimeBudget, TwoPointsGiveTheLineThroughThem) {
-  EXPECT_NEAR(predictSecondsPerPixel(kAffine, 5), 0.025, 1e-12);   // between
-  EXPECT_NEAR(predictSecondsPerPixel(kAffine, 17), 0.037, 1e-12);  // measured
-  EXPECT_NEAR(predictSecondsPerPixel(kAffine, 65), 0.085, 1e-12);  // beyond, on the line
+  EXPECT_NEAR(predictSecondsPerPixel(kAffine, 5), 0.015, 1e-12);   // between
+  EXPECT_NEAR(predictSecondsPerPixel(kAffine, 17), 0.027, 1e-12);  // measured
+  EXPECT_NEAR(predictSecondsPerPixel(kAffine, 65), 0.075, 1e-12);  // beyond, on the line
 }
 
-TEST(TimeBudget, ExtrapolationIsNeverCheaperNorSteeperThanProportional) {
-  // Noise made 17 rays cheaper than 1: no cheaper than the last point beyond it.
-  EXPECT_DOUBLE_EQ(predictSecondsPerPixel({{1, 0.05}, {17, 0.04}}, 100), 0.05);
+TEST(TimeBudget, ExtrapolationRisesByHalfToAllOfTheCostPerRay) {
+  // Noise made 17 rays cheaper than 1: beyond, at least half the last point's cost a ray is added.
+  EXPECT_NEAR(predictSecondsPerPixel({{1, 0.05}, {17, 0.04}}, 100), 0.05 + 0.5 * 0.05 / 17 * 83, 1e-12);
   // A slope above the last point's cost per ray is cut to it.
   EXPECT_NEAR(predictSecondsPerPixel({{1, 0.001}, {2, 0.1}}, 4), 0.2, 1e-12);
 }
@@ -48,9 +48,9 @@ TEST(TimeBudget, ChoosesTheLargestSquareThatFits) {
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Grid, kPixels, kProportional, 15.9), 9);
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kProportional, 16.0), 9);  // 17 s for c = 16
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kProportional, 1e9, 1000), 961);  // capped
-  // Affine: c = 16 (17 rays) costs 3.7 s, c = 25 (26 rays) 4.6 s.
-  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kAffine, 4.5), 16);
-  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kAffine, 4.6 + 1e-9), 25);
+  // Affine: c = 16 (17 rays) costs 2.7 s, c = 25 (26 rays) 3.6 s.
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kAffine, 3.5), 16);
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kAffine, 3.6 + 1e-9), 25);
 }
 
 TEST(TimeBudget, AtLeastOneSampleEvenWhenNothingFits) {
