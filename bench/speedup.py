@@ -170,14 +170,13 @@ class Runner:
             for k in range(n):
                 log = os.path.join(self.logs, "ceiling.together.r%d.%d" % (rnd, k))
                 out = open(log + ".out", "w")
-                cmd = self.render_cmd(self.a.spp, 1, "tiles")
+                cmd = self.render_cmd(self.a.spp, 1, "tiles") + ["--stats-json", log + ".json"]
                 cmd[cmd.index("-o") + 1] = os.path.join(self.a.out, "ceiling-%d.png" % k)
                 procs.append((subprocess.Popen(cmd, stdout=out, stderr=subprocess.DEVNULL), out, log))
             for p, out, log in procs:
                 rc = p.wait()
                 out.close()
-                with open(log + ".out") as f:
-                    stats = parse_stats(f.read())
+                stats = parse_stats(log + ".json")
                 self.rows.append(dict(group="ceiling", config="together x%d" % n, kind="openmp", schedule="tiles",
                                       ranks=1, threads=1, p=1, run=rnd, spp=self.a.spp, width=self.a.width,
                                       height=self.a.height, status="ok" if rc == 0 else "failed (exit %d)" % rc,

@@ -459,6 +459,10 @@ class Loader {
       if (!id.empty() && i.id == id) throw errorAt(e, "\"" + printable(file) + "\" makes a cycle: " + chain);
     if (including_.size() > kMaxIncludeDepth)
       throw errorAt(e, "more than " + std::to_string(kMaxIncludeDepth) + " nested includes: " + chain);
+    // Only regular files: a pipe or a device (/dev/stdin) could keep the loader waiting.
+    std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+      throw errorAt(e, "cannot include \"" + printable(file) + "\": not a regular file");
     std::string bytes;
     try {
       bytes = readSceneBytes(path);

@@ -113,6 +113,8 @@ TEST(XmlInclude, MissingFileAndBadAttributesAreErrorsAtTheInclude) {
   const std::string main = f.write("main.xml", "<scene>\n  <include file=\"none.xml\"/>\n</scene>");
   EXPECT_NE(errorOf(main).find(main + ":2: error: include: cannot include \"none.xml\": "), std::string::npos);
   EXPECT_NE(errorOf(main).find("No such file or directory"), std::string::npos);
+  const std::string device = f.write("device.xml", "<scene>\n  <include file=\"/dev/null\"/>\n</scene>");
+  EXPECT_EQ(errorOf(device), device + ":2: error: include: cannot include \"/dev/null\": not a regular file");
   const std::string noFile = f.write("nofile.xml", "<scene>\n  <include/>\n</scene>");
   EXPECT_NE(errorOf(noFile).find(noFile + ":2: error: include: "), std::string::npos);
   const std::string children = f.write("children.xml", "<scene>\n  <include file=\"x.xml\"><sphere/></include>\n</scene>");
