@@ -29,9 +29,10 @@ class Writer {
     const std::string pov = std::filesystem::path(r_.povName).filename().string();
     const std::string png = std::filesystem::path(pov).replace_extension(".png").string();
     const int width = s_.image ? s_.image->width : 320, height = s_.image ? s_.image->height : 240;
-    out_ += fmt::format("// Render as `pvrt render --sampler pov --spp {}` does: {}\n", std::max(1, r_.aaDepth * r_.aaDepth),
-                        povCommandLine(pov, png, width, height, r_.aaDepth));
-    out_ += "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: --spp 1)\n";
+    out_ += fmt::format("// Render as `pvrt render --sampler pov --spp {}` does: {}\n",
+                        std::max(1, r_.aaDepth * r_.aaDepth), povCommandLine(pov, png, width, height, r_.aaDepth));
+    out_ +=
+        "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: --spp 1)\n";
     out_ += "#version 3.7;\n";
     const GlobalSettings& g = s_.globals;
     out_ += "global_settings { assumed_gamma 1.0 max_trace_level " + std::to_string(g.maxTraceLevel) +

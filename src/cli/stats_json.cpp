@@ -1,7 +1,6 @@
 #include "cli/stats_json.h"
 
 #include <algorithm>
-
 #include <nlohmann/json.hpp>
 
 #include "render/effects.h"
@@ -13,11 +12,16 @@ namespace {
 using nlohmann::ordered_json;  // keys in the order written, as --stats prints them
 
 ordered_json counts(const RenderStats& t) {
-  return {{"primary_rays", t.primaryRays},         {"shadow_rays", t.shadowRays},
-          {"reflected_rays", t.reflectedRays},     {"refracted_rays", t.refractedRays},
-          {"transmitted_rays", t.transmittedRays}, {"total_rays", t.totalRays()},
-          {"intersection_tests", t.intersectionTests}, {"shading_operations", t.shadingOps},
-          {"non_finite_samples", t.nonFiniteSamples},  {"non_finite_pixels", t.nonFinitePixels},
+  return {{"primary_rays", t.primaryRays},
+          {"shadow_rays", t.shadowRays},
+          {"reflected_rays", t.reflectedRays},
+          {"refracted_rays", t.refractedRays},
+          {"transmitted_rays", t.transmittedRays},
+          {"total_rays", t.totalRays()},
+          {"intersection_tests", t.intersectionTests},
+          {"shading_operations", t.shadingOps},
+          {"non_finite_samples", t.nonFiniteSamples},
+          {"non_finite_pixels", t.nonFinitePixels},
           {"work", t.work()}};
 }
 
@@ -65,7 +69,8 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
                         {"sampler", samplerName(s.sampler.kind)},
                         {"spp", s.sampler.samplesPerPixel}};
   // Counted from 0, the end excluded: columns [x0, x1), rows [y0, y1).
-  if (s.region) image["region"] = {{"x0", s.region->x0}, {"y0", s.region->y0}, {"x1", s.region->x1}, {"y1", s.region->y1}};
+  if (s.region)
+    image["region"] = {{"x0", s.region->x0}, {"y0", s.region->y0}, {"x1", s.region->x1}, {"y1", s.region->y1}};
   j["image"] = std::move(image);
   ordered_json backend = {{"name", run.backend}, {"schedule", strategyName(s.schedule.strategy)}};
   if (ranks.empty()) {
@@ -80,7 +85,10 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
   j["counts"] = counts(r.totals);
   j["length_unit"] = {{"unit", scene.tol.unit}, {"typical_object_size", scene.tol.typicalSize}};
   const BvhStats& b = scene.bvh.stats();
-  j["bvh"] = {{"nodes", b.nodes}, {"leaves", b.leaves}, {"depth", b.maxDepth}, {"bytes", b.bytes},
+  j["bvh"] = {{"nodes", b.nodes},
+              {"leaves", b.leaves},
+              {"depth", b.maxDepth},
+              {"bytes", b.bytes},
               {"build_seconds", b.buildSeconds}};
   size_t buffers = 0, entries = 0, bytes = 0;
   int cells = 0;
@@ -91,14 +99,17 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
     bytes += lb.bytes();
     cells = std::max(cells, lb.resolution());
   }
-  j["light_buffers"] = {{"count", buffers}, {"max_cells_per_side", cells}, {"entries", entries}, {"bytes", bytes},
+  j["light_buffers"] = {{"count", buffers},
+                        {"max_cells_per_side", cells},
+                        {"entries", entries},
+                        {"bytes", bytes},
                         {"build_seconds", scene.lightBufferSeconds}};
   j["memory_limit"] = {{"bytes", scene.memoryLimit}, {"lights_without_buffer", scene.lightsOverMemoryLimit}};
-  j["seconds"] = {{"load", run.loadSeconds}, {"build", run.buildSeconds}, {"render", r.seconds},
-                  {"write", run.writeSeconds}};
+  j["seconds"] = {
+      {"load", run.loadSeconds}, {"build", run.buildSeconds}, {"render", r.seconds}, {"write", run.writeSeconds}};
   j["rays_per_second"] = r.seconds > 0 ? double(r.totals.totalRays()) / r.seconds : 0.0;
-  j["peak_memory_bytes"] = {{"run", run.peakBytes}, {"after_load", run.loadPeakBytes},
-                            {"after_build", run.buildPeakBytes}};
+  j["peak_memory_bytes"] = {
+      {"run", run.peakBytes}, {"after_load", run.loadPeakBytes}, {"after_build", run.buildPeakBytes}};
   if (ranks.empty()) {
     j["workers"] = threads(r.workers, true);
   } else {
@@ -120,11 +131,15 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
     const BudgetPlan& p = *run.budget;
     ordered_json pilots = ordered_json::array();
     for (size_t i = 0; i < p.pilotSamples.size(); ++i)
-      pilots.push_back({{"spp", p.pilotSamples[i]}, {"rays_per_pixel", p.points[i].rays},
+      pilots.push_back({{"spp", p.pilotSamples[i]},
+                        {"rays_per_pixel", p.points[i].rays},
                         {"seconds_per_pixel", p.points[i].secondsPerPixel}});
-    j["time_budget"] = {{"chosen_spp", p.samplesPerPixel}, {"predicted_render_seconds", p.predictedSeconds},
-                        {"pilot_seconds", p.pilotSeconds}, {"pilot_share", p.pilotShare},
-                        {"fits", p.fits},     {"pilots", std::move(pilots)}};
+    j["time_budget"] = {{"chosen_spp", p.samplesPerPixel},
+                        {"predicted_render_seconds", p.predictedSeconds},
+                        {"pilot_seconds", p.pilotSeconds},
+                        {"pilot_share", p.pilotShare},
+                        {"fits", p.fits},
+                        {"pilots", std::move(pilots)}};
   }
   // A file name need not be UTF-8: its bytes are replaced rather than refused.
   return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";

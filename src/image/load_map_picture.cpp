@@ -1,8 +1,9 @@
 #include "image/load_map_picture.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 
 namespace pvrt {
 
@@ -86,7 +87,8 @@ Image loadMapPicture(const std::vector<float>& load, int width, int height) {
     hi = *mx;
   }
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) picture.set(x, y, loadMapColour(load[size_t(y) * size_t(width) + size_t(x)], lo, hi));
+    for (int x = 0; x < width; ++x)
+      picture.set(x, y, loadMapColour(load[size_t(y) * size_t(width) + size_t(x)], lo, hi));
 
   // The strip: white, the bar (6 s rows) with a margin, ticks (2 s) under it, labels (5 s).
   const Color paper(1, 1, 1), ink(0, 0, 0);

@@ -71,10 +71,10 @@ WorkItem renderArea(const RenderSettings& s) {
   if (!s.region) return {0, 0, s.width, s.height};
   const WorkItem& r = *s.region;
   if (r.x0 < 0 || r.y0 < 0 || r.x1 > s.width || r.y1 > s.height || r.x0 >= r.x1 || r.y0 >= r.y1)
-    throw Error(ExitCode::Usage, "pvrt: error: region columns " + std::to_string(r.x0 + 1) + "-" + std::to_string(r.x1) +
-                                     ", rows " + std::to_string(r.y0 + 1) + "-" + std::to_string(r.y1) +
-                                     " is not a non-empty part of the " + std::to_string(s.width) + " x " +
-                                     std::to_string(s.height) + " image");
+    throw Error(ExitCode::Usage, "pvrt: error: region columns " + std::to_string(r.x0 + 1) + "-" +
+                                     std::to_string(r.x1) + ", rows " + std::to_string(r.y0 + 1) + "-" +
+                                     std::to_string(r.y1) + " is not a non-empty part of the " +
+                                     std::to_string(s.width) + " x " + std::to_string(s.height) + " image");
   return r;
 }
 

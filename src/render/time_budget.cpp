@@ -28,13 +28,17 @@ constexpr double kMinSlopeShare = 0.5;
 // Sorted by rays, one point per ray count (the last measured), and made non-decreasing in
 // cost, so that the prediction is monotone in c.
 std::vector<CostPoint> ordered(std::vector<CostPoint> points) {
-  std::stable_sort(points.begin(), points.end(), [](const CostPoint& a, const CostPoint& b) { return a.rays < b.rays; });
+  std::stable_sort(points.begin(), points.end(),
+                   [](const CostPoint& a, const CostPoint& b) { return a.rays < b.rays; });
   std::vector<CostPoint> out;
   for (const CostPoint& p : points) {
-    if (!out.empty() && out.back().rays == p.rays) out.back() = p;
-    else out.push_back(p);
+    if (!out.empty() && out.back().rays == p.rays)
+      out.back() = p;
+    else
+      out.push_back(p);
   }
-  for (size_t i = 1; i < out.size(); ++i) out[i].secondsPerPixel = std::max(out[i].secondsPerPixel, out[i - 1].secondsPerPixel);
+  for (size_t i = 1; i < out.size(); ++i)
+    out[i].secondsPerPixel = std::max(out[i].secondsPerPixel, out[i - 1].secondsPerPixel);
   return out;
 }
 
@@ -79,17 +83,19 @@ int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostP
   if (!fits(lo)) return 1;
   while (lo < hi) {
     const int mid = lo + (hi - lo + 1) / 2;
-    if (fits(mid)) lo = mid;
-    else hi = mid - 1;
+    if (fits(mid))
+      lo = mid;
+    else
+      hi = mid - 1;
   }
   return lo * lo;
 }
 
-BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, double budgetSeconds,
-                         double spentSeconds, int maxSamplesPerPixel) {
+BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, double budgetSeconds, double spentSeconds,
+                         int maxSamplesPerPixel) {
   if (!(budgetSeconds > 0) || !std::isfinite(budgetSeconds))
-    throw Error(ExitCode::Usage, "--time-budget must be a positive number of seconds, got " +
-                                     std::to_string(budgetSeconds));
+    throw Error(ExitCode::Usage,
+                "--time-budget must be a positive number of seconds, got " + std::to_string(budgetSeconds));
   const SamplerKind kind = settings.sampler.kind;
   const WorkItem area = renderArea(settings);
   const long pixels = area.pixels();
@@ -133,7 +139,7 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
     int c = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
     // One point says nothing of how the cost grows with c (proportionally, it would say c = 1
     // where c = 4 fits: a ray at c = 1 costs about 3 of one at c >= 4); a second comes from c >= 4.
-    if (plan.points.size() == 1) c = std::max(c, std::min(4, maxSamplesPerPixel));
+    if (plan.points.size() == 1 && maxSamplesPerPixel >= 4) c = std::max(c, 4);
     // A pilot no dearer than its share of what is left, even if the cost were proportional.
     while (c > 1 && dearest * cameraRaysPerPixel(kind, c) / measured > kPilotShareOfLeft * left()) {
       const int n = int(std::lround(std::sqrt(double(c))));
@@ -143,7 +149,8 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
     going = run(c);
   }
   plan.samplesPerPixel = chooseSamplesPerPixel(kind, pixels, plan.points, left(), maxSamplesPerPixel);
-  plan.predictedSeconds = double(pixels) * predictSecondsPerPixel(plan.points, cameraRaysPerPixel(kind, plan.samplesPerPixel));
+  plan.predictedSeconds =
+      double(pixels) * predictSecondsPerPixel(plan.points, cameraRaysPerPixel(kind, plan.samplesPerPixel));
   plan.fits = plan.predictedSeconds <= left();
   return plan;
 }

@@ -40,13 +40,13 @@ int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostP
                           int maxSamplesPerPixel = 1 << 16);
 
 struct BudgetPlan {
-  int samplesPerPixel = 1;      // the chosen c (1 when even c = 1 is predicted not to fit)
-  double predictedSeconds = 0;  // render time predicted for the chosen c
-  double pilotSeconds = 0;      // wall time of the pilot renders together
-  double pilotShare = 0;        // of the image's pixels that each pilot rendered
+  int samplesPerPixel = 1;        // the chosen c (1 when even c = 1 is predicted not to fit)
+  double predictedSeconds = 0;    // render time predicted for the chosen c
+  double pilotSeconds = 0;        // wall time of the pilot renders together
+  double pilotShare = 0;          // of the image's pixels that each pilot rendered
   std::vector<int> pilotSamples;  // c of each pilot, in order
   std::vector<CostPoint> points;  // what they measured
-  bool fits = true;             // false when c = 1 is predicted to exceed what was left
+  bool fits = true;               // false when c = 1 is predicted to exceed what was left
 };
 
 // Plans c for a render that must end within budgetSeconds of wall time, of which

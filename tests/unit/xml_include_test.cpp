@@ -73,7 +73,8 @@ TEST(XmlInclude, ErrorsNameTheIncludedFileAndLine) {
   Files f("error");
   f.write("sub/bad.xml", "<scene>\n\n  <sphere center=\"0 0 0\" radus=\"1\"/>\n</scene>");
   const std::string main = f.write("main.xml", "<scene>\n  <include file=\"sub/bad.xml\"/>\n</scene>");
-  EXPECT_EQ(errorOf(main), f.path("sub/bad.xml") + ":3: error: sphere: unknown attribute 'radus' (did you mean 'radius'?)");
+  EXPECT_EQ(errorOf(main),
+            f.path("sub/bad.xml") + ":3: error: sphere: unknown attribute 'radus' (did you mean 'radius'?)");
 }
 
 TEST(XmlInclude, WhatDependsOnEarlierElementsSpansFiles) {
@@ -117,7 +118,8 @@ TEST(XmlInclude, MissingFileAndBadAttributesAreErrorsAtTheInclude) {
   EXPECT_EQ(errorOf(device), device + ":2: error: include: cannot include \"/dev/null\": not a regular file");
   const std::string noFile = f.write("nofile.xml", "<scene>\n  <include/>\n</scene>");
   EXPECT_NE(errorOf(noFile).find(noFile + ":2: error: include: "), std::string::npos);
-  const std::string children = f.write("children.xml", "<scene>\n  <include file=\"x.xml\"><sphere/></include>\n</scene>");
+  const std::string children =
+      f.write("children.xml", "<scene>\n  <include file=\"x.xml\"><sphere/></include>\n</scene>");
   EXPECT_NE(errorOf(children).find("unexpected element inside <include>"), std::string::npos);
   const std::string notScene = f.write("notscene.xml", "<scene>\n  <include file=\"other.xml\"/>\n</scene>");
   f.write("other.xml", "<other/>");
