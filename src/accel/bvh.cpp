@@ -52,7 +52,7 @@ class LazySlabs {
 // edge meeting it (docs/fidelity.md).
 template <class Visit>
 void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const {
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+  for (uint32_t i = boundedCount_; i < items_.size(); ++i)
     if (visit(i)) return;
   if (!nodes_.empty()) {
     const FloatRaySlabs slabs(ray);
@@ -132,7 +132,7 @@ void Bvh::traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visi
 
 bool Bvh::blocks(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests, bool& transparent,
                  uint32_t& blocker) const {
-  const LeafItem& p = items_[i];
+  const PrimitiveRecord& p = items_[i];
   if (p.noShadow) return false;
   ++tests;
   if (!intersectItem(i, ray, tMin, tMax)) return false;
@@ -178,7 +178,7 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray&
   }
   for (uint32_t i : buffer.everywhere())
     if (blocks(i, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)
+  for (uint32_t i = boundedCount_; i < items_.size(); ++i)
     if (blocks(i, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
   return transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
@@ -197,9 +197,9 @@ void Bvh::shadowCandidates(const LightBuffer& buffer, int index, const Ray& ray,
   out.clear();
   for (const LightBuffer::Entry& e : buffer.list(index)) {
     if (e.near > reach) break;
-    const LeafItem& it = items_[e.primitive];
+    const PrimitiveRecord& it = items_[e.primitive];
     if (it.noShadow) continue;
-    if (it.kind == LeafItem::Kind::Sphere) {
+    if (it.kind == PrimitiveRecord::Kind::Sphere) {
       // The sphere test's squared half chord, r^2 - |perp|^2, for this line. A segment
       // starting within `drift` of it changes |perp|^2 by at most 2 x drift + drift^2, and
       // rounding by some 1e-15 (x^2 + r^2): a chord this far below zero stays a miss.
@@ -226,19 +226,21 @@ std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates
       best = ClosestHit{*h, i};
     }
   };
-  for (uint32_t i = boundedCount_; i < prims_.size(); ++i)  // first, as in traverse()
+  for (uint32_t i = boundedCount_; i < items_.size(); ++i)  // first, as in traverse()
     if (!items_[i].noShadow) test(i);
   for (uint32_t i : candidates) test(i);
   return best;
 }
+
+Primitive Bvh::primitive(uint32_t i) const { return primitiveOf(items_[i], others_); }
 
 std::vector<LightBuffer::Occluder> Bvh::occluders() const {
   std::vector<LightBuffer::Occluder> out;
   resizePrefaulted(out, boundedCount_, 0);
   parallelBlocks(Blocks(boundedCount_, 0, 4096), 0, [&](size_t, size_t lo, size_t hi) {
     for (size_t i = lo; i < hi; ++i) {
-      out[i].box = prims_[i].bounds();
-      if (items_[i].kind == LeafItem::Kind::Sphere) {
+      out[i].box = boundsOf(items_[i], others_);
+      if (items_[i].kind == PrimitiveRecord::Kind::Sphere) {
         out[i].center = items_[i].sphere.center;
         out[i].radius = std::fabs(items_[i].sphere.radius);
       }
@@ -332,8 +334,8 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   // Tests every ray against primitive i, four at a time for a sphere or a plane.
   auto intersect = [&](uint32_t i) {
     tests += uint64_t(count);
-    const LeafItem& p = items_[i];
-    if (p.kind == LeafItem::Kind::Other) {
+    const PrimitiveRecord& p = items_[i];
+    if (p.kind == PrimitiveRecord::Kind::Other) {
       for (int k = 0; k < count; ++k) {
         if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
           best[k] = h->t;
@@ -348,7 +350,7 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
     double t[4];
     for (int g = 0; g < lanes.groups; ++g) {
       const unsigned real = count - 4 * g >= 4 ? 0xFu : (1u << (count - 4 * g)) - 1;
-      unsigned hit = (p.kind == LeafItem::Kind::Sphere
+      unsigned hit = (p.kind == PrimitiveRecord::Kind::Sphere
                           ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)
                           : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)) &
                       real;
@@ -369,8 +371,8 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
     return found;
   };
   // The unbounded primitives first, as in traverse().
-  if (boundedCount_ < prims_.size()) {
-    for (uint32_t i = boundedCount_; i < prims_.size(); ++i) intersect(i);
+  if (boundedCount_ < items_.size()) {
+    for (uint32_t i = boundedCount_; i < items_.size(); ++i) intersect(i);
     farthest = *std::max_element(best, best + count);
   }
   // A leaf's primitives are tested against every ray: four rays cost one vector test,
@@ -430,7 +432,7 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
 
 void Bvh::occludeLive(uint32_t i, const PacketRays& lanes, const double* tMax, double tMin, uint64_t& live,
                       Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  const LeafItem& p = items_[i];
+  const PrimitiveRecord& p = items_[i];
   if (p.noShadow) return;
   tests += uint64_t(__builtin_popcountll(live));
   auto record = [&](int k) {
@@ -442,12 +444,12 @@ void Bvh::occludeLive(uint32_t i, const PacketRays& lanes, const double* tMax, d
       out[k] = Occlusion::Transparent;
     }
   };
-  if (p.kind != LeafItem::Kind::Other) {
+  if (p.kind != PrimitiveRecord::Kind::Other) {
     double t[4];
     for (int g = 0; g < lanes.groups; ++g) {
       const unsigned group = unsigned(live >> (4 * g)) & 0xFu;
       if (group == 0) continue;
-      unsigned hit = (p.kind == LeafItem::Kind::Sphere
+      unsigned hit = (p.kind == PrimitiveRecord::Kind::Sphere
                           ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)
                           : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)) &
                      group;
@@ -463,9 +465,9 @@ void Bvh::occludeLive(uint32_t i, const PacketRays& lanes, const double* tMax, d
 
 void Bvh::occludeLiveByUnbounded(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
                                  uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
-  for (uint32_t i = boundedCount_; i < prims_.size() && live != 0; ++i) {
-    const LeafItem& it = items_[i];
-    const bool plane = it.kind == LeafItem::Kind::Plane && !it.noShadow;
+  for (uint32_t i = boundedCount_; i < items_.size() && live != 0; ++i) {
+    const PrimitiveRecord& it = items_[i];
+    const bool plane = it.kind == PrimitiveRecord::Kind::Plane && !it.noShadow;
     const uint64_t missed = plane ? planeMisses(it.plane, apex, lanes, live) : 0;
     uint64_t tested = live & ~missed;
     if (tested == 0) continue;

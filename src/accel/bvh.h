@@ -14,6 +14,7 @@
 #include "accel/packet.h"
 #include "accel/packet_rays.h"
 #include "geometry/primitive.h"
+#include "geometry/primitive_store.h"
 
 namespace pvrt {
 
@@ -68,45 +69,52 @@ class Bvh {
   Bvh() = default;
   // Takes the primitives and reorders them for locality. The build uses up to
   // `buildThreads` threads (0: threadBudget()); the tree is the same whatever the number.
-  explicit Bvh(std::vector<Primitive> primitives, unsigned buildThreads = 0);
+  explicit Bvh(PrimitiveStore primitives, unsigned buildThreads = 0);
+  explicit Bvh(std::vector<Primitive> primitives, unsigned buildThreads = 0)
+      : Bvh(PrimitiveStore(std::move(primitives)), buildThreads) {}
 
-  const std::vector<Primitive>& primitives() const { return prims_; }
+  // The primitives, bounded ones first in the leaves' order, then the unbounded ones.
+  size_t size() const { return items_.size(); }
+  bool empty() const { return items_.empty(); }
+  // Primitive i whole: a copy, made again from its record for a sphere or a plane (for
+  // tests and tools; the queries below read the records).
+  Primitive primitive(uint32_t i) const;
   const BvhStats& stats() const { return stats_; }
   const std::vector<BvhNode>& nodes() const { return nodes_; }
 
-  // What shading needs of primitive i (an index into primitives()), read from the compact
-  // leaf records where they have it, so that a hit on one of a million spheres does not
-  // also fetch its ~200-byte Primitive: the same answers as the Primitive's.
+  // What shading needs of primitive i (0 <= i < size()), read from its compact record where
+  // that has it, so that a hit on one of a million spheres fetches 48 bytes: the same
+  // answers as the Primitive's.
   uint32_t material(uint32_t i) const { return items_[i].material; }
   // Primitive i's shape when it is an untransformed sphere or plane (the shapes whose
   // shading queries the leaf records answer), else null.
   const SphereShape* sphere(uint32_t i) const {
-    return items_[i].kind == LeafItem::Kind::Sphere ? &items_[i].sphere : nullptr;
+    return items_[i].kind == PrimitiveRecord::Kind::Sphere ? &items_[i].sphere : nullptr;
   }
   const PlaneShape* plane(uint32_t i) const {
-    return items_[i].kind == LeafItem::Kind::Plane ? &items_[i].plane : nullptr;
+    return items_[i].kind == PrimitiveRecord::Kind::Plane ? &items_[i].plane : nullptr;
   }
   uint32_t object(uint32_t i) const { return items_[i].object; }
   std::optional<ShapeHit> intersect(uint32_t i, const Ray& ray, double tMin, double tMax) const {
     return intersectItem(i, ray, tMin, tMax);
   }
   SurfacePoint surfacePoint(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
-    const LeafItem& it = items_[i];
+    const PrimitiveRecord& it = items_[i];
     switch (it.kind) {
-      case LeafItem::Kind::Sphere: return sphereSurfacePoint(it.sphere, ray.at(hit.t));
-      case LeafItem::Kind::Plane: return planeSurfacePoint(it.plane, ray.at(hit.t));
-      case LeafItem::Kind::Other: break;
+      case PrimitiveRecord::Kind::Sphere: return sphereSurfacePoint(it.sphere, ray.at(hit.t));
+      case PrimitiveRecord::Kind::Plane: return planeSurfacePoint(it.plane, ray.at(hit.t));
+      case PrimitiveRecord::Kind::Other: break;
     }
-    return prims_[i].surfacePoint(ray, hit);
+    return others_[it.other].surfacePoint(ray, hit);
   }
   Vec3 normal(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
-    const LeafItem& it = items_[i];
+    const PrimitiveRecord& it = items_[i];
     switch (it.kind) {
-      case LeafItem::Kind::Sphere: return sphereNormal(it.sphere, ray.at(hit.t));
-      case LeafItem::Kind::Plane: return it.plane.normal;
-      case LeafItem::Kind::Other: break;
+      case PrimitiveRecord::Kind::Sphere: return sphereNormal(it.sphere, ray.at(hit.t));
+      case PrimitiveRecord::Kind::Plane: return it.plane.normal;
+      case PrimitiveRecord::Kind::Other: break;
     }
-    return prims_[i].normal(ray, hit);
+    return others_[it.other].normal(ray, hit);
   }
 
   // Nearest hit in (tMin, tMax). `tests` is increased by the number of primitive
@@ -147,7 +155,7 @@ class Bvh {
   // of another, which may be the other one).
   std::optional<ClosestHit> closestAmong(std::span<const uint32_t> candidates, const Ray& ray, double tMin,
                                          double tMax, uint64_t& tests) const;
-  // The bounded primitives as light buffers see them, in the order of primitives(): their
+  // The bounded primitives as light buffers see them, in the order of primitive(i): their
   // boxes, and the balls of untransformed spheres.
   std::vector<LightBuffer::Occluder> occluders() const;
 
@@ -188,37 +196,23 @@ class Bvh {
   // The unbounded primitives' part of the packet shadow queries.
   void occludeLiveByUnbounded(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
                               uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+  // Puts others_ in the order of the records that point to them (the build's last step).
+  void followRecords(int threads);
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
-  // What the leaves and shading need of each primitive, 48 bytes apiece beside the ~200 of
-  // a Primitive, so that traversal of a big scene streams through little memory.
-  struct LeafItem {
-    enum class Kind : uint8_t { Sphere, Plane, Other };  // untransformed spheres and planes are tested from here
-    union {
-      SphereShape sphere;  // Kind::Sphere
-      PlaneShape plane;    // Kind::Plane
-    };
-    uint32_t material = 0;
-    uint32_t object = 0;
-    float unit = 1;
-    Kind kind = Kind::Other;
-    bool noShadow = false;
-    bool opaque = true;
-    LeafItem() : sphere{} {}
-  };
   std::optional<ShapeHit> intersectItem(uint32_t i, const Ray& ray, double tMin, double tMax) const {
-    const LeafItem& it = items_[i];
+    const PrimitiveRecord& it = items_[i];
     switch (it.kind) {
-      case LeafItem::Kind::Sphere: return intersectWorldSphere(it.sphere, it.unit, ray, tMin, tMax);
-      case LeafItem::Kind::Plane: return detail::hitPlane(it.plane, ray, tMin, tMax, it.unit);
-      case LeafItem::Kind::Other: break;
+      case PrimitiveRecord::Kind::Sphere: return intersectWorldSphere(it.sphere, it.unit, ray, tMin, tMax);
+      case PrimitiveRecord::Kind::Plane: return detail::hitPlane(it.plane, ray, tMin, tMax, it.unit);
+      case PrimitiveRecord::Kind::Other: break;
     }
-    return prims_[i].intersect(ray, tMin, tMax);
+    return others_[it.other].intersect(ray, tMin, tMax);
   }
 
-  std::vector<Primitive> prims_;  // bounded ones first, then unbounded
-  std::vector<LeafItem> items_;   // one per primitive
+  std::vector<PrimitiveRecord> items_;  // one per primitive: bounded ones first, then unbounded
+  std::vector<Primitive> others_;       // the Kind::Other ones' shapes, in the order of their records
   uint32_t boundedCount_ = 0;
   std::vector<BvhNode> nodes_;
   BvhStats stats_;

@@ -552,10 +552,40 @@ class Builder {
   std::vector<uint32_t> shared_;
 };
 
+// Where Collapser::collapse() puts the wide nodes it makes: appended to `grow`, or written
+// from `at` on; with neither, they are only counted. `first` is the index of the first one.
+class WideOut {
+ public:
+  static WideOut appending(std::vector<BvhNode>& nodes) { return WideOut(&nodes, nullptr, uint32_t(nodes.size())); }
+  static WideOut writing(BvhNode* at, uint32_t first) { return WideOut(nullptr, at, first); }
+  static WideOut counting() { return WideOut(nullptr, nullptr, 0); }
+
+  // A new empty node; its index.
+  uint32_t make() {
+    if (grow_) grow_->emplace_back();
+    else if (at_) at_[made_] = BvhNode();
+    return first_ + made_++;
+  }
+  // The node of that index, or null when counting.
+  BvhNode* node(uint32_t index) {
+    if (grow_) return &(*grow_)[index];
+    return at_ ? at_ + (index - first_) : nullptr;
+  }
+  uint32_t made() const { return made_; }
+
+ private:
+  WideOut(std::vector<BvhNode>* grow, BvhNode* at, uint32_t first) : grow_(grow), at_(at), first_(first) {}
+  std::vector<BvhNode>* grow_;
+  BvhNode* at_;
+  uint32_t first_;
+  uint32_t made_ = 0;
+};
+
 // Turns the binary tree into the wide one: each wide node takes the children of a binary
 // node, then keeps opening its largest interior child until it has kBvhWidth. The wide nodes
-// of the shared binary nodes are made first; then the subtrees below them at the same time,
-// each into a vector of its own; then all are put in place, depth first as one thread would.
+// of the shared binary nodes are made first; then the subtrees below them are counted at the
+// same time, placed (depth first, as one thread would put them), and made at the same time,
+// each straight into its place: the wide tree is never held twice.
 class Collapser {
  public:
   // `shared`: the binary nodes that the threads built together, in increasing order.
@@ -571,36 +601,33 @@ class Collapser {
       return;
     }
     if (threads_ <= 1 || shared_.empty()) {
-      collapse(0, 1, wide, stats, nullptr);
+      WideOut out = WideOut::appending(wide);
+      collapse(0, 1, out, stats, nullptr);
       return;
     }
     std::vector<BvhNode> top;
     std::vector<Deferred> deferred;
-    collapse(0, 1, top, stats, &deferred);
+    WideOut topOut = WideOut::appending(top);
+    collapse(0, 1, topOut, stats, &deferred);
     parallelIndices(deferred.size(), threads_, [&](size_t k) {
       Deferred& d = deferred[k];
-      collapse(d.binary, d.depth, d.nodes, d.stats, nullptr);
+      WideOut count = WideOut::counting();
+      collapse(d.binary, d.depth, count, d.stats, nullptr);
+      d.count = count.made();
     });
     // Where the nodes go, depth first: each node of `top` is followed by its children's
     // subtrees, in slot order, whether made in `top` or deferred.
-    struct Run {
-      bool deferred;
-      uint32_t index;  // into `top` or `deferred`
-    };
-    std::vector<Run> runs;
     std::vector<uint32_t> place(top.size());
     uint32_t next = 0;
     const auto locate = [&](const auto& self, uint32_t t) -> void {
-      runs.push_back({false, t});
       place[t] = next++;
       const BvhNode& n = top[t];
       for (int i = 0; i < n.used; ++i) {
         if (n.count[i] > 0) continue;
         if (n.child[i] & kDeferred) {
           Deferred& d = deferred[n.child[i] & ~kDeferred];
-          runs.push_back({true, uint32_t(&d - deferred.data())});
           d.at = next;
-          next += uint32_t(d.nodes.size());
+          next += d.count;
         } else {
           self(self, n.child[i]);
         }
@@ -611,21 +638,15 @@ class Collapser {
       for (int i = 0; i < n.used; ++i)
         if (n.count[i] == 0)
           n.child[i] = n.child[i] & kDeferred ? deferred[n.child[i] & ~kDeferred].at : place[n.child[i]];
+    resizePrefaulted(wide, next, threads_);
+    for (size_t t = 0; t < top.size(); ++t) wide[place[t]] = top[t];
     parallelIndices(deferred.size(), threads_, [&](size_t k) {
-      Deferred& d = deferred[k];
-      for (BvhNode& n : d.nodes)
-        for (int i = 0; i < n.used; ++i)
-          if (n.count[i] == 0) n.child[i] += d.at;
+      const Deferred& d = deferred[k];
+      WideOut out = WideOut::writing(wide.data() + d.at, d.at);
+      BvhStats unused;
+      collapse(d.binary, d.depth, out, unused, nullptr);
     });
-    wide.reserve(next);
-    prefault(wide.data(), next * sizeof(BvhNode), threads_);
-    for (const Run& r : runs) {
-      if (!r.deferred) {
-        wide.push_back(top[r.index]);
-        continue;
-      }
-      const Deferred& d = deferred[r.index];
-      wide.insert(wide.end(), d.nodes.begin(), d.nodes.end());
+    for (const Deferred& d : deferred) {
       stats.leaves += d.stats.leaves;
       stats.maxDepth = std::max(stats.maxDepth, d.stats.maxDepth);
     }
@@ -638,19 +659,17 @@ class Collapser {
   struct Deferred {
     uint32_t binary;
     int depth;
-    std::vector<BvhNode> nodes;
     BvhStats stats;
-    uint32_t at = 0;  // where its nodes go
+    uint32_t count = 0;  // its wide nodes
+    uint32_t at = 0;     // where they go
   };
 
-  // Makes the wide node for binary node b and its subtree into `wide`, and returns its index
+  // Makes the wide node for binary node b and its subtree into `out`, and returns its index
   // there. With `deferred`, the subtrees below the shared nodes are left to it instead (their
   // slots' child is kDeferred | their index there).
-  uint32_t collapse(uint32_t b, int depth, std::vector<BvhNode>& wide, BvhStats& stats,
-                    std::vector<Deferred>* deferred) {
+  uint32_t collapse(uint32_t b, int depth, WideOut& out, BvhStats& stats, std::vector<Deferred>* deferred) {
     stats.maxDepth = std::max(stats.maxDepth, depth);
-    const uint32_t self = uint32_t(wide.size());
-    wide.emplace_back();
+    const uint32_t self = out.make();
     uint32_t kids[kBvhWidth] = {b + 1, binary_[b].rightOrFirst};
     int n = 2;
     while (n < kBvhWidth) {
@@ -673,13 +692,13 @@ class Collapser {
       if (k.count > 0) {
         ++stats.leaves;
         stats.maxDepth = std::max(stats.maxDepth, depth + 1);
-        wide[self].setChild(i, k.bounds, k.rightOrFirst, uint8_t(k.count));
+        if (BvhNode* node = out.node(self)) node->setChild(i, k.bounds, k.rightOrFirst, uint8_t(k.count));
       } else if (deferred && !std::binary_search(shared_.begin(), shared_.end(), kids[i])) {
-        wide[self].setChild(i, k.bounds, kDeferred | uint32_t(deferred->size()), 0);
-        deferred->push_back({kids[i], depth + 1, {}, {}});
+        out.node(self)->setChild(i, k.bounds, kDeferred | uint32_t(deferred->size()), 0);
+        deferred->push_back({kids[i], depth + 1, {}});
       } else {
-        const uint32_t child = collapse(kids[i], depth + 1, wide, stats, deferred);
-        wide[self].setChild(i, k.bounds, child, 0);
+        const uint32_t child = collapse(kids[i], depth + 1, out, stats, deferred);
+        if (BvhNode* node = out.node(self)) node->setChild(i, k.bounds, child, 0);
       }
     }
     return self;
@@ -727,7 +746,7 @@ void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCo
   used = uint8_t(std::max(int(used), slot + 1));
 }
 
-Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
+Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads) {
   const auto start = std::chrono::steady_clock::now();
   const int threads = buildThreads > 0 ? int(buildThreads) : threadBudget();
   const uint32_t total = uint32_t(primitives.size());
@@ -740,7 +759,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   else
     parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
       uint32_t n = 0;
-      for (size_t i = lo; i < hi; ++i) n += !primitives[i].bounds().empty();
+      for (size_t i = lo; i < hi; ++i) n += !primitives.bounds(i).empty();
       firstItem[b + 1] = n;
     });
   std::partial_sum(firstItem.begin(), firstItem.end(), firstItem.begin());
@@ -749,7 +768,7 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
     uint32_t k = firstItem[b];
     for (size_t i = lo; i < hi; ++i) {
-      const Bounds box = primitives[i].bounds();
+      const Bounds box = primitives.bounds(i);
       if (box.empty()) unbounded[b].push_back(uint32_t(i));
       else items[k++] = {box, box.centroid(), uint32_t(i)};
     }
@@ -772,33 +791,40 @@ Bvh::Bvh(std::vector<Primitive> primitives, unsigned buildThreads) {
   items = RawArray<BuildItem>(0);
   for (size_t b = 0, j = boundedCount_; b < unbounded.size(); ++b)
     for (uint32_t i : unbounded[b]) order[j++] = i;
-  permuteInPlace(primitives, order, threads);
-  prims_ = std::move(primitives);
-  resizePrefaulted(items_, prims_.size(), threads);
-  std::vector<uint64_t> transformBytes(blocks.count, 0);
+  permuteInPlace(primitives.records, order, threads);
+  items_ = std::move(primitives.records);
+  others_ = std::move(primitives.others);
+  followRecords(threads);
+  stats_.nodes = nodes_.size();
+  stats_.bytes = nodes_.size() * sizeof(BvhNode) + items_.size() * sizeof(PrimitiveRecord) +
+                 others_.size() * sizeof(Primitive);
+  for (const Primitive& p : others_)
+    if (p.transform) stats_.bytes += sizeof(Transform);  // an upper bound: primitives may share one
+  stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The shapes of the Kind::Other records put in their records' order, for locality: a leaf's
+// triangles then lie side by side. Each block of records counts its own, then renumbers
+// them from where the blocks before leave off.
+void Bvh::followRecords(int threads) {
+  if (others_.empty()) return;
+  const Blocks blocks(items_.size(), threads, kGrain);
+  std::vector<uint32_t> first(blocks.count + 1, 0);
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) first[b + 1] += items_[i].kind == PrimitiveRecord::Kind::Other;
+  });
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<uint32_t> order(others_.size());
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    uint32_t k = first[b];
     for (size_t i = lo; i < hi; ++i) {
-      const Primitive& p = prims_[i];
-      LeafItem& it = items_[i];
-      if (const SphereShape* sphere = p.transform ? nullptr : std::get_if<SphereShape>(&p.shape)) {
-        it.sphere = *sphere;
-        it.kind = LeafItem::Kind::Sphere;
-      } else if (const PlaneShape* plane = p.transform ? nullptr : std::get_if<PlaneShape>(&p.shape)) {
-        it.plane = *plane;
-        it.kind = LeafItem::Kind::Plane;
-      }
-      it.material = p.material;
-      it.object = p.object;
-      it.unit = p.unit;
-      it.noShadow = p.noShadow;
-      it.opaque = p.opaque;
-      if (p.transform) transformBytes[b] += sizeof(Transform);  // an upper bound: primitives may share one
+      PrimitiveRecord& r = items_[i];
+      if (r.kind != PrimitiveRecord::Kind::Other) continue;
+      order[k] = r.other;
+      r.other = k++;
     }
   });
-  stats_.nodes = nodes_.size();
-  stats_.bytes = nodes_.size() * sizeof(BvhNode) + prims_.size() * (sizeof(Primitive) + sizeof(LeafItem)) +
-                 std::accumulate(transformBytes.begin(), transformBytes.end(), uint64_t(0));
-  stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  permuteInPlace(others_, order, threads);
 }
 
 }  // namespace pvrt

@@ -125,7 +125,7 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
                strategyName(s.schedule.strategy));
   }
   fmt::print("  Kernel effects        {}\n", effectNames(r.effects));
-  fmt::print("  Objects               {} primitives, {} lights\n", scene.bvh.primitives().size(),
+  fmt::print("  Objects               {} primitives, {} lights\n", scene.bvh.size(),
              scene.lights.size());
   line("Primary rays", t.primaryRays);
   line("Shadow rays", t.shadowRays);

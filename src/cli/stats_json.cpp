@@ -81,7 +81,7 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
   }
   j["backend"] = std::move(backend);
   j["kernel_effects"] = effectNames(r.effects);
-  j["objects"] = {{"primitives", scene.bvh.primitives().size()}, {"lights", scene.lights.size()}};
+  j["objects"] = {{"primitives", scene.bvh.size()}, {"lights", scene.lights.size()}};
   j["counts"] = counts(r.totals);
   j["length_unit"] = {{"unit", scene.tol.unit}, {"typical_object_size", scene.tol.typicalSize}};
   const BvhStats& b = scene.bvh.stats();

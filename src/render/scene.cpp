@@ -29,11 +29,12 @@ namespace {
 
 // The lower median of the bounded objects' sizes (0 when there are none): what the
 // scene's objects are like, whatever one sky sphere or a speck of dust is like.
-double typicalSize(const std::vector<Bounds>& objects) {
+// `objects` holds each object's sizeOf() its box, or a negative number when it has none.
+double typicalSize(const std::vector<double>& objects) {
   std::vector<double> sizes;
   sizes.reserve(objects.size());
-  for (const Bounds& b : objects)
-    if (!b.empty()) sizes.push_back(sizeOf(b));
+  for (const double size : objects)
+    if (size >= 0) sizes.push_back(size);
   if (sizes.empty()) return 0;
   const auto mid = sizes.begin() + std::ptrdiff_t((sizes.size() - 1) / 2);
   std::nth_element(sizes.begin(), mid, sizes.end());
@@ -63,10 +64,9 @@ bool isDiagonal(const Affine& a) {
 // POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
 Vec3 toFloat(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
 
-// Where PrimitiveBuilder puts an object's primitives: at `at` onward (advancing it), else at
-// the end of `grow`; with neither it only counts them.
+// Where PrimitiveBuilder puts an object's primitives: at the end of `grow`; without it, it
+// only counts them.
 struct PrimitiveSink {
-  Primitive* at = nullptr;
   std::vector<Primitive>* grow = nullptr;
   size_t made = 0;
 };
@@ -154,14 +154,13 @@ class PrimitiveBuilder {
   }
   void add(Shape shape, bool keepTransform) {
     ++out_.made;
-    if (!out_.at && !out_.grow) return;
+    if (!out_.grow) return;
     Primitive p{std::move(shape), nullptr, object_, object_, noShadow_};
     if (keepTransform && !identity_) {
       if (!shared_) shared_ = share(Transform::from(xf_));  // one for all the object's primitives
       p.transform = shared_;
     }
-    if (out_.at) *out_.at++ = std::move(p);
-    else out_.grow->push_back(std::move(p));
+    out_.grow->push_back(std::move(p));
   }
 
   PrimitiveSink& out_;
@@ -214,54 +213,66 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   const int threads = threadBudget();
   s.materials.addObjects(objects, threads);
   // The primitives, a block of objects at a time: each block's counted, then made where the
-  // blocks before leave off (one thread appends them as it makes them).
-  const bool alone = threads <= 1;
-  const Blocks blocks(objects.size(), threads, alone ? std::max<size_t>(objects.size(), 1) : kObjectsAtATime);
+  // blocks before leave off. They go straight into their compact records (an untransformed
+  // sphere is nothing more), so that a big scene never holds a Primitive for each.
+  const Blocks blocks(objects.size(), threads, kObjectsAtATime);
   std::vector<size_t> first(blocks.count + 1, 0);
-  std::vector<Primitive> prims;
-  if (alone) {
-    prims.reserve(objects.size());  // one each, but for meshes (which grow it)
-  } else {
-    parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-      for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
-    });
-    std::partial_sum(first.begin(), first.end(), first.begin());
-    resizePrefaulted(prims, first.back(), threads);
-  }
-  // Each block's primitives that hold the camera, and their bounds.
-  std::vector<std::vector<uint32_t>> interiors(blocks.count);
-  // Each object's box (a mesh is one object): a block's primitives come from its own
-  // objects only, so the blocks fill disjoint entries.
-  std::vector<Bounds> objectBounds(objects.size());
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
+  });
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  PrimitiveStore store;
+  resizePrefaulted(store.records, first.back(), threads);
+  std::vector<std::vector<Primitive>> others(blocks.count);      // each block's Kind::Other shapes
+  std::vector<std::vector<uint32_t>> interiors(blocks.count);    // its primitives that hold the camera
+  std::vector<double> objectSizes(objects.size(), -1);           // sizeOf() each object's box (a mesh is one)
   const Vec3 eye = s.camera.location();
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
-    PrimitiveSink sink{alone ? nullptr : prims.data() + first[b], alone ? &prims : nullptr};
-    for (size_t i = lo; i < hi; ++i)
+    std::vector<Primitive> made;  // one object's
+    PrimitiveSink sink{&made};
+    size_t k = first[b];
+    for (size_t i = lo; i < hi; ++i) {
+      made.clear();
       std::visit(PrimitiveBuilder(sink, uint32_t(i), objects[i].noShadow, objects[i].transforms.combined()),
                  objects[i].shape);
-    for (size_t k = alone ? 0 : first[b]; k < (alone ? prims.size() : first[b + 1]); ++k) {
-      Primitive& p = prims[k];
-      if (p.inside(eye)) interiors[b].push_back(p.object);
-      p.opaque = s.materials[p.material].opaque;
-      objectBounds[p.object].extend(p.bounds());
+      Bounds box;
+      for (Primitive& p : made) {
+        if (p.inside(eye)) interiors[b].push_back(p.object);
+        p.opaque = s.materials[p.material].opaque;
+        box.extend(p.bounds());
+      }
+      // Each shape's tolerances follow its own object's size (unbounded ones: the scene's
+      // unit, set below), so that a sky sphere neither coarsens the others nor is lost to theirs.
+      if (!box.empty()) objectSizes[i] = sizeOf(box);
+      for (Primitive& p : made) {
+        if (!box.empty()) p.unit = float(unitFor(objectSizes[i]));
+        store.records[k++] = PrimitiveStore::compact(std::move(p), others[b]);
+      }
     }
   });
   for (size_t b = 0; b < blocks.count; ++b)
     for (uint32_t object : interiors[b])
       if (s.cameraInteriors.find(object) < 0) s.cameraInteriors.push(object);
-  s.tol = rayTolerances(typicalSize(objectBounds), eye);
-  // Each shape's tolerances follow its own object's size (planes: the scene's unit), so
-  // that a sky sphere neither coarsens the others nor is lost to theirs.
-  parallelBlocks(Blocks(prims.size(), threads, kObjectsAtATime), threads, [&](size_t, size_t lo, size_t hi) {
-    for (size_t k = lo; k < hi; ++k) {
-      const Bounds& own = objectBounds[prims[k].object];
-      prims[k].unit = float(own.empty() ? s.tol.unit : unitFor(sizeOf(own)));
+  s.tol = rayTolerances(typicalSize(objectSizes), eye);
+  // The blocks' other shapes into one array, their records renumbered to match, and the
+  // unbounded primitives given the scene's unit.
+  std::vector<size_t> firstOther(blocks.count + 1, 0);
+  for (size_t b = 0; b < blocks.count; ++b) firstOther[b + 1] = firstOther[b] + others[b].size();
+  store.others.resize(firstOther.back());
+  parallelBlocks(blocks, threads, [&](size_t b, size_t, size_t) {
+    std::move(others[b].begin(), others[b].end(), store.others.begin() + std::ptrdiff_t(firstOther[b]));
+    std::vector<Primitive>().swap(others[b]);
+    for (size_t k = first[b]; k < first[b + 1]; ++k) {
+      PrimitiveRecord& r = store.records[k];
+      if (r.kind == PrimitiveRecord::Kind::Other) r.other += uint32_t(firstOther[b]);
+      if (objectSizes[r.object] < 0) store.setUnit(k, float(s.tol.unit));
     }
   });
   s.effects = deriveEffects(s, desc);
   if (release) std::vector<ObjectDesc>().swap(*release);
   interrupt::check();
-  s.bvh = Bvh(std::move(prims));
+  std::vector<double>().swap(objectSizes);
+  s.bvh = Bvh(std::move(store));
   buildLightBuffers(s, options.memoryLimit);
   interrupt::check();
   return s;
@@ -291,7 +302,7 @@ void buildLightBuffers(Scene& s, size_t memoryLimit) {
   std::vector<size_t> which;
   for (size_t j = 0; j < s.lights.size(); ++j)
     if (!s.lights[j].area && !s.lights[j].shadowless) which.push_back(j);
-  if (which.empty() || s.bvh.primitives().empty()) return;
+  if (which.empty() || s.bvh.empty()) return;
   const std::vector<LightBuffer::Occluder> occluders = s.bvh.occluders();
   std::vector<Vec3> locations;
   for (size_t j : which) locations.push_back(s.lights[j].location);

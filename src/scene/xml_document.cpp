@@ -2,12 +2,14 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <tinyxml2.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cctype>
 #include <cstring>
@@ -107,6 +109,14 @@ SceneBytes::SceneBytes(const std::string& path) {
     }
   }
   text_ = readSceneBytes(path);
+}
+
+bool SceneBytes::release(size_t begin, size_t end) {
+  if (!data_ || begin >= end || end > size_) return false;
+  const auto page = uintptr_t(::sysconf(_SC_PAGESIZE));
+  const uintptr_t from = (uintptr_t(data_.get() + begin) + page - 1) / page * page;
+  const uintptr_t to = uintptr_t(data_.get() + end) / page * page;
+  return from < to && ::madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED) == 0;
 }
 
 size_t utf8SequenceLength(std::string_view s, size_t i) {

@@ -27,6 +27,10 @@ class SceneBytes {
  public:
   explicit SceneBytes(const std::string& path);
   std::string_view view() const { return data_ ? std::string_view(data_.get(), size_) : std::string_view(text_); }
+  // Gives the memory of the whole pages within view()'s [begin, end) back to the system: what
+  // they held is gone (they read as zeros). Only a big file's bytes are given back; true when
+  // some were. Several threads may give back disjoint ranges at once.
+  bool release(size_t begin, size_t end);
 
  private:
   std::unique_ptr<char[]> data_;  // a big file's bytes

@@ -10,7 +10,9 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string_view>
@@ -79,52 +81,33 @@ const std::vector<std::string_view>& knownAttributes(std::string_view element) {
   return it == table.end() ? none : it->second;
 }
 
-// Room for `count` objects, faulted in by every thread: a million objects' descriptions are
-// 0.7 GB of fresh memory, which the kernel clears at about 1.3 s a GiB on one core of the
-// 2-core VM.
-void reserveFaulted(std::vector<ObjectDesc>& objects, size_t count) {
-  objects.reserve(count);
-  prefault(objects.data(), count * sizeof(ObjectDesc), 0, 0);
-}
-
-// The objects of a big file are constructed by one thread (a std::vector constructs its
-// elements in order: 0.29 s for a million on the 2-core VM), a block at a time, while the
-// others parse pieces; a piece waits only for its own objects before it fills them.
+// The objects of a big file are constructed as the pieces that fill them need them, in
+// order, by whichever thread needs more first (a std::vector constructs its elements in
+// order), a block at a time, while the others parse pieces. Each piece faults in its own
+// objects' pages itself beforehand (the kernel clears each page it hands out: 1.3 s a GiB
+// on a core of the 2-core VM), so that this serial part is only the constructors; and no
+// object is constructed long before its text is read, so that the objects grow as the
+// text they come from is given back (SceneBytes::release).
 class ObjectsBuilt {
  public:
-  // Constructs objects up to `count` (within their capacity); on any failure the waiters are
-  // let go, and told so.
-  void construct(std::vector<ObjectDesc>& objects, size_t count) {
-    try {
-      constexpr size_t kBlock = 4096;
-      while (objects.size() < count) {
-        objects.resize(std::min(count, objects.size() + kBlock));
-        publish(objects.size());
-      }
-    } catch (...) {
-      failure_ = std::current_exception();
-      publish(kFailed);
-    }
+  explicit ObjectsBuilt(std::vector<ObjectDesc>& objects) : objects_(objects) {}
+  // Constructs the objects up to `count` (within their capacity) that are not yet.
+  void ensure(size_t count) {
+    if (built_.load(std::memory_order_acquire) >= count) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    constexpr size_t kBlock = 4096;
+    while (objects_.size() < count) objects_.resize(std::min(count, objects_.size() + kBlock));
+    built_.store(objects_.size(), std::memory_order_release);
   }
-  // Waits until the first `count` objects are constructed; false if they never will be.
-  bool waitFor(size_t count) {
-    size_t built = built_.load(std::memory_order_acquire);
-    while (built < count) {
-      built_.wait(built, std::memory_order_acquire);
-      built = built_.load(std::memory_order_acquire);
-    }
-    return built != kFailed;
+  // Faults in the pages of objects [first, last) (reserved, maybe not yet constructed).
+  void prefault(size_t first, size_t last) const {
+    if (last > first) pvrt::prefault(objects_.data() + first, (last - first) * sizeof(ObjectDesc), 1, 0);
   }
-  std::exception_ptr failure() const { return failure_; }
 
  private:
-  static constexpr size_t kFailed = std::numeric_limits<size_t>::max();
-  void publish(size_t built) {
-    built_.store(built, std::memory_order_release);
-    built_.notify_all();
-  }
+  std::vector<ObjectDesc>& objects_;
+  std::mutex mutex_;
   std::atomic<size_t> built_{0};
-  std::exception_ptr failure_;
 };
 
 // Whether a child of the root named `name` is an object (every other child is a setting, a
@@ -202,9 +185,11 @@ class Loader {
   // pending elements and reads again, from its failing element on, any piece that failed.
   // So the scene and its first error are those of load(), whatever the number of threads.
   // nullopt when a piece is not XML text or not well-formed XML: only the whole file's parse
-  // can then tell which error comes first.
+  // can then tell which error comes first. `release`, when given, is told each piece that
+  // was read whole, whose text is not read again (but for the whole file's parse, after a
+  // nullopt).
   std::optional<SceneDesc> loadPieces(const tinyxml2::XMLDocument& skeleton, std::string_view bytes,
-                                      const XmlSplit& split) {
+                                      const XmlSplit& split, const std::function<void(size_t, size_t)>& release) {
     const size_t count = split.pieces.size();
     // The root's errors come after any malformed XML, but before any element's.
     std::exception_ptr rootError;
@@ -216,18 +201,13 @@ class Loader {
     }
     std::vector<size_t> first(count + 1, 0);  // piece k's objects go to [first[k], first[k + 1])
     for (size_t k = 0; k < count; ++k) first[k + 1] = first[k] + split.pieces[k].counted;
-    if (!rootError) reserveFaulted(scene_.objects, first[count]);
+    if (!rootError) scene_.objects.reserve(first[count]);
     // The pieces write their objects through this, never through the vector being resized.
     ObjectDesc* const places = scene_.objects.data();
 
-    ObjectsBuilt built;
+    ObjectsBuilt built(scene_.objects);
     std::vector<PieceRead> reads(count);
-    parallelIndices(count + 1, 0, [&](size_t i) {
-      if (i == 0) {  // the first index handed out: the pieces may wait for it
-        if (!rootError) built.construct(scene_.objects, first[count]);
-        return;
-      }
-      const size_t k = i - 1;
+    parallelIndices(count, 0, [&](size_t k) {
       PieceRead& read = reads[k];
       try {
         const XmlPiece& p = split.pieces[k];
@@ -236,20 +216,23 @@ class Loader {
         if (!read.text) return;
         tinyxml2::XMLDocument doc;
         read.wellFormed = doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS;
-        if (!read.wellFormed || rootError || !built.waitFor(first[k + 1] > first[k] ? first[k + 1] : 0)) return;
+        if (!read.wellFormed || rootError) return;
+        built.prefault(first[k], first[k + 1]);
+        built.ensure(first[k + 1]);
         Loader(file_, Mode::Ahead).readAhead(doc, p.firstLine - 1, places, first[k], first[k + 1], read);
+        if (read.complete && release) release(p.begin, p.end);
       } catch (const Miscounted&) {
         read.miscounted = true;
       } catch (...) {
         read.failure = std::current_exception();
       }
     });
-    if (built.failure()) std::rethrow_exception(built.failure());
     for (const PieceRead& read : reads)
       if (!read.text || !read.wellFormed || read.miscounted) return std::nullopt;
     for (const PieceRead& read : reads)
       if (read.failure) std::rethrow_exception(read.failure);
     if (rootError) std::rethrow_exception(rootError);
+    built.ensure(first[count]);
 
     try {
       for (size_t k = 0; k < count; ++k) {
@@ -984,25 +967,32 @@ std::string withLineFeeds(std::string_view bytes) {
   return out;
 }
 
-SceneDesc parse(std::string_view bytes, const std::string& name, const LoadOptions& options) {
+// The scene read a piece at a time (Loader::loadPieces, which `release` is passed to when the
+// pieces are `bytes` themselves), or nullopt when the file must be read whole.
+std::optional<SceneDesc> parseInPieces(std::string_view bytes, const std::string& name, const LoadOptions& options,
+                                       const std::function<void(size_t, size_t)>& release) {
   if (options.piecesRead) *options.piecesRead = 0;
   const std::string lineFeeds = withLineFeeds(bytes);
   if (!lineFeeds.empty()) bytes = lineFeeds;
-  if (bytes.size() > options.pieceBytes) {
-    const std::optional<XmlSplit> split = splitXmlRoot(bytes, pieceSize(bytes.size(), options.pieceBytes), isObjectName);
-    // What lies around the pieces (the skeleton) is checked here, the pieces by the loader.
-    if (split && isSceneText(bytes.substr(0, split->bodyBegin)) && isSceneText(bytes.substr(split->bodyEnd))) {
-      tinyxml2::XMLDocument skeleton;
-      const std::string text = skeletonOf(bytes, *split);
-      if (skeleton.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) {
-        if (std::optional<SceneDesc> s = Loader(name).loadPieces(skeleton, bytes, *split)) {
-          if (options.piecesRead) *options.piecesRead = split->pieces.size();
-          s->path = name;
-          return std::move(*s);
-        }
-      }
-    }
-  }
+  if (bytes.size() <= options.pieceBytes) return std::nullopt;
+  const std::optional<XmlSplit> split = splitXmlRoot(bytes, pieceSize(bytes.size(), options.pieceBytes), isObjectName);
+  // What lies around the pieces (the skeleton) is checked here, the pieces by the loader.
+  if (!split || !isSceneText(bytes.substr(0, split->bodyBegin)) || !isSceneText(bytes.substr(split->bodyEnd)))
+    return std::nullopt;
+  tinyxml2::XMLDocument skeleton;
+  const std::string text = skeletonOf(bytes, *split);
+  if (skeleton.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) return std::nullopt;
+  std::optional<SceneDesc> s =
+      Loader(name).loadPieces(skeleton, bytes, *split, lineFeeds.empty() ? release : nullptr);
+  if (!s) return std::nullopt;
+  if (options.piecesRead) *options.piecesRead = split->pieces.size();
+  s->path = name;
+  return s;
+}
+
+SceneDesc parseWhole(std::string_view bytes, const std::string& name) {
+  const std::string lineFeeds = withLineFeeds(bytes);
+  if (!lineFeeds.empty()) bytes = lineFeeds;
   checkSceneText(bytes, name);
   tinyxml2::XMLDocument doc;
   parseCheckedText(doc, bytes, name);
@@ -1014,12 +1004,22 @@ SceneDesc parse(std::string_view bytes, const std::string& name, const LoadOptio
 }  // namespace
 
 SceneDesc loadSceneString(const std::string& xml, const std::string& name, const LoadOptions& options) {
-  return parse(xml, name, options);
+  if (std::optional<SceneDesc> s = parseInPieces(xml, name, options, nullptr)) return std::move(*s);
+  return parseWhole(xml, name);
 }
 
 SceneDesc loadSceneFile(const std::string& path, const LoadOptions& options) {
-  const SceneBytes bytes(path);
-  return parse(bytes.view(), path, options);
+  SceneBytes bytes(path);
+  // The text of each piece read is given back as soon as it is read, so that a big file's
+  // text and its objects are not held whole at once; if the pieces' way then gives up, the
+  // file is read again for the whole parse.
+  std::atomic<bool> released{false};
+  const auto release = [&](size_t begin, size_t end) {
+    if (bytes.release(begin, end)) released.store(true, std::memory_order_relaxed);
+  };
+  if (std::optional<SceneDesc> s = parseInPieces(bytes.view(), path, options, release)) return std::move(*s);
+  if (released.load()) bytes = SceneBytes(path);
+  return parseWhole(bytes.view(), path);
 }
 
 }  // namespace pvrt

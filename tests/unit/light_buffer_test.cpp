@@ -77,7 +77,7 @@ std::vector<ClosestHit> walk(Ray segment, double dist, Nearest&& nearest) {
 // The segment from a point on the surface of primitive `i` (a sphere) toward the light,
 // started a hair off the surface, as the tracer starts it; both queries' answers.
 Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec3& onSphere, double shift) {
-  const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+  const SphereShape s = std::get<SphereShape>(bvh.primitive(i).shape);
   const Vec3 normal = normalize(onSphere - s.center);
   const Vec3 toLight = buffer.light() - onSphere;
   const double dist = length(toLight);
@@ -119,7 +119,7 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
   size_t crossings = 0;
   for (int k = 0; k < segments; ++k) {
     const uint32_t i = uint32_t(gen.uniform(0, double(prims.size() - 1)));  // a sphere, not the floor
-    const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+    const SphereShape s = std::get<SphereShape>(bvh.primitive(i).shape);
     const Vec3 onSphere = s.center + gen.direction() * s.radius;
     if (length(buffer.light() - onSphere) <= 2 * kTol) continue;
     const Answer a = shadowOf(bvh, buffer, i, onSphere, 1e-12);
@@ -241,8 +241,8 @@ TEST(LightBuffer, AgreesOnTheEdgesBetweenFaces) {
   }
   const Bvh bvh(prims);
   const LightBuffer buffer(light, bvh.occluders());
-  for (uint32_t i = 0; i < bvh.primitives().size(); ++i) {
-    const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+  for (uint32_t i = 0; i < bvh.size(); ++i) {
+    const SphereShape s = std::get<SphereShape>(bvh.primitive(i).shape);
     if (length(s.center) < 7) continue;
     // The point of the far sphere that faces the light exactly: its segment runs along
     // the edge or corner direction, through the near sphere.
@@ -266,7 +266,7 @@ TEST(LightBuffer, AgreesOnSegmentsThatGrazeSpheres) {
   int blocked = 0, clear = 0;
   for (int k = 0; k < 40000; ++k) {
     const uint32_t i = uint32_t(gen.uniform(0, double(prims.size() - 1)));
-    const SphereShape& s = std::get<SphereShape>(bvh.primitives()[i].shape);
+    const SphereShape s = std::get<SphereShape>(bvh.primitive(i).shape);
     const Vec3 c = s.center - light;
     const double d = length(c);
     if (d <= 2 * s.radius) continue;

@@ -155,7 +155,7 @@ TEST(Render, SceneBuiltFromAConsumedDescriptionIsTheSame) {
   EXPECT_EQ(consumed.objects.capacity(), 0u);
   EXPECT_EQ(consumed.lights.size(), 1u);  // the rest is left as it was
   EXPECT_EQ(fromConsumed.effects, kept.effects);
-  EXPECT_EQ(fromConsumed.bvh.primitives().size(), kept.bvh.primitives().size());
+  EXPECT_EQ(fromConsumed.bvh.size(), kept.bvh.size());
   const RenderSettings s = settings(24, 16);
   const RenderResult a = render(kept, s), b = render(fromConsumed, s);
   EXPECT_EQ(b.image.data(), a.image.data());
@@ -209,7 +209,12 @@ TEST(Render, TheSceneDoesNotDependOnTheBuildThreads) {
   ASSERT_EQ(one.cameraInteriors.count, 3);
   for (int threads : {2, 3, 8}) {
     const Scene many = build(threads);
-    const auto &a = one.bvh.primitives(), &b = many.bvh.primitives();
+    const auto all = [](const Bvh& bvh) {
+      std::vector<Primitive> out;
+      for (uint32_t i = 0; i < bvh.size(); ++i) out.push_back(bvh.primitive(i));
+      return out;
+    };
+    const std::vector<Primitive> a = all(one.bvh), b = all(many.bvh);
     ASSERT_EQ(a.size(), b.size()) << threads << " threads";
     ASSERT_EQ(a.size(), desc.objects.size() - 1 + 120 - 1);  // the mesh's 120, no degenerate one
     for (size_t i = 0; i < a.size(); ++i) {

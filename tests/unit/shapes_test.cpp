@@ -167,8 +167,8 @@ TEST(Shapes, PlaneDistanceIsAlongTheUnitNormalWhenBuiltFromAScene) {
   const Scene scene = buildScene(loadSceneString(R"(<scene>
       <plane normal="0 2 0" distance="1"/></scene>)",
                                                  "plane.xml"));
-  ASSERT_EQ(scene.bvh.primitives().size(), 1u);
-  const Primitive& p = scene.bvh.primitives()[0];
+  ASSERT_EQ(scene.bvh.size(), 1u);
+  const Primitive& p = scene.bvh.primitive(0);
   const auto* shape = std::get_if<PlaneShape>(&p.shape);
   ASSERT_NE(shape, nullptr);
   expectVecNear(shape->normal, kY);
@@ -189,11 +189,11 @@ TEST(Shapes, TransformedPlaneBuiltFromAScene) {
   uint64_t tests = 0;
   const auto up = scene.bvh.closest({{0, 10, 0}, -kY}, kMinIsectDepth, kMaxDistance, tests);
   ASSERT_TRUE(up);
-  EXPECT_EQ(scene.bvh.primitives()[up->primitive].object, 0u);
+  EXPECT_EQ(scene.bvh.primitive(up->primitive).object, 0u);
   EXPECT_NEAR(up->hit.t, 5.0, 1e-12);
   const auto side = scene.bvh.closest({{5, -20, 0}, -kX}, kMinIsectDepth, kMaxDistance, tests);
   ASSERT_TRUE(side);
-  EXPECT_EQ(scene.bvh.primitives()[side->primitive].object, 1u);
+  EXPECT_EQ(scene.bvh.primitive(side->primitive).object, 1u);
   EXPECT_NEAR(side->hit.t, 6.0, 1e-12);
 }
 
@@ -274,8 +274,9 @@ TEST(Shapes, BoxWithSwappedCornersBuiltFromAScene) {
       <box corner1="0 -1 -1" corner2="1 1 1"><scale v="-2 1 1"/><translate v="0 0 10"/></box>
       </scene>)",
                                                  "box.xml"));
-  ASSERT_EQ(scene.bvh.primitives().size(), 2u);
-  for (const Primitive& p : scene.bvh.primitives()) {
+  ASSERT_EQ(scene.bvh.size(), 2u);
+  for (uint32_t i = 0; i < scene.bvh.size(); ++i) {
+    const Primitive p = scene.bvh.primitive(i);
     const auto* shape = std::get_if<BoxShape>(&p.shape);
     ASSERT_NE(shape, nullptr);
     EXPECT_FALSE(p.transform);  // axis-aligned: the transform is folded into the corners
@@ -286,12 +287,12 @@ TEST(Shapes, BoxWithSwappedCornersBuiltFromAScene) {
   uint64_t tests = 0;
   const auto h = scene.bvh.closest({{0, 0, -5}, kZ}, kMinIsectDepth, kMaxDistance, tests);
   ASSERT_TRUE(h);
-  EXPECT_EQ(scene.bvh.primitives()[h->primitive].object, 0u);
+  EXPECT_EQ(scene.bvh.primitive(h->primitive).object, 0u);
   EXPECT_NEAR(h->hit.t, 4.0, kTol);
   // The second box spans x in [-2, 0] (x scaled by -2), z in [9, 11].
   const auto h2 = scene.bvh.closest({{-1.5, 0, 0}, kZ}, kMinIsectDepth, kMaxDistance, tests);
   ASSERT_TRUE(h2);
-  EXPECT_EQ(scene.bvh.primitives()[h2->primitive].object, 1u);
+  EXPECT_EQ(scene.bvh.primitive(h2->primitive).object, 1u);
   EXPECT_NEAR(h2->hit.t, 9.0, kTol);
   EXPECT_FALSE(scene.bvh.closest({{1.5, 0, 5}, kZ}, kMinIsectDepth, kMaxDistance, tests));
 }

@@ -4,8 +4,11 @@
 #include "scene/xml_loader.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -1195,6 +1198,47 @@ TEST(XmlLoader, MaterialsUsedInLaterPiecesThanTheirDefinition) {
   EXPECT_EQ(s.objects[39].material.name, "m19");
   EXPECT_EQ(s.objects[39].material.loc.line, 2 + 2 * 19);
   EXPECT_EQ(s.objects[39].material.pigment.color.rgb.r, 0.19);
+}
+
+// A file big enough to be read into memory at once (SceneBytes, from 32 MB) and in pieces,
+// whose pieces' text is given back as soon as each is read: the scene and the first error
+// are still those of the whole parse, also when a late piece is malformed (the pieces' way
+// then gives up after giving text back, and the file is read again) or a middle one fails.
+TEST(XmlLoader, BigFileGivesBackItsTextAndStillGivesTheWholeParsesAnswer) {
+  std::string body;
+  for (int i = 0; i < 400000; ++i)
+    body += "  <sphere center=\"" + std::to_string(i) + ".5 1 2\" radius=\"0.25\"><pigment color=\"0.5 0.25 1\"/></sphere>\n";
+  ASSERT_GT(body.size(), size_t(32) << 20);
+  const std::string valid = "<scene>\n<camera location=\"0 0 -5\"/>\n" + body + "</scene>\n";
+  const std::string lateMalformed = "<scene>\n" + body + "<sphere></sphre>\n</scene>\n";
+  std::string middleError = valid;
+  middleError.replace(middleError.find("<sphere center=\"200000.5"), 7, "<sphere radus=\"1\"");
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("pvrt_big_file_" + std::to_string(::getpid()) + ".xml")).string();
+  auto outcome = [](auto load) {
+    try {
+      return sceneToXml(load());
+    } catch (const Error& e) {
+      return std::string("error: ") + e.what();
+    }
+  };
+  struct Case {
+    const std::string* xml;
+    size_t pieces;  // at least this many pieces read (0: none, the file was read whole)
+  };
+  for (const Case& c : {Case{&valid, 8}, Case{&lateMalformed, 0}, Case{&middleError, 0}}) {
+    std::ofstream(path, std::ios::binary) << *c.xml;
+    size_t pieces = 0;
+    setThreadBudget(2);
+    const std::string fromFile = outcome([&] { return loadSceneFile(path, {size_t(1) << 20, &pieces}); });
+    setThreadBudget(0);
+    const std::string whole = outcome([&] { return loadSceneString(*c.xml, path, {kWhole}); });
+    EXPECT_EQ(fromFile.size(), whole.size());
+    EXPECT_TRUE(fromFile == whole) << fromFile.substr(0, 200) << "\n" << whole.substr(0, 200);
+    if (c.pieces > 0) EXPECT_GE(pieces, c.pieces);
+    else EXPECT_EQ(pieces, 0u);
+  }
+  std::filesystem::remove(path);
 }
 
 }  // namespace
