@@ -25,7 +25,10 @@ class Writer {
   PovExport run() {
     // The file name only: the export must not depend on where the repository lies.
     out_ += "// Exported by pvrt from " + std::filesystem::path(s_.path).filename().string() + "\n";
+    if (s_.image) out_ += fmt::format("// Render with: +W{} +H{}\n", s_.image->width, s_.image->height);
     // The sampling recipe with the resolution: the one command line that gives pvrt's image.
+    // (Not SDL: reference/manifest.tsv hashes the export without these two lines, since they
+    // depend on the file's name and --aa-depth, which it records in columns of their own.)
     const std::string pov = std::filesystem::path(r_.povName).filename().string();
     const std::string png = std::filesystem::path(pov).replace_extension(".png").string();
     const int width = s_.image ? s_.image->width : 320, height = s_.image ? s_.image->height : 240;

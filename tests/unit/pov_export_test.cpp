@@ -27,8 +27,8 @@ TEST(PovExport, MinimalSceneHasHeaderExplicitCameraAndNothingElse) {
 TEST(PovExport, HeaderCarriesTheAntialiasingRecipeAndResolution) {
   const SceneDesc scene = loadSceneString(R"(<scene><image width="64" height="40"/></scene>)", "t.xml");
   const std::string sdl = exportPov(scene, PovRecipe{3, "out/dir/t.pov"}).sdl;
-  EXPECT_NE(sdl.find("// Render as `pvrt render --sampler pov --spp 9` does: povray +It.pov +Ot.png +W64 +H40 -D +FN "
-                     "+A0.0 +AM1 +R3 -J\n"),
+  EXPECT_NE(sdl.find("// Render with: +W64 +H40\n// Render as `pvrt render --sampler pov --spp 9` does: povray "
+                     "+It.pov +Ot.png +W64 +H40 -D +FN +A0.0 +AM1 +R3 -J\n"),
             std::string::npos)
       << sdl;
 }
