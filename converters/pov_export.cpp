@@ -20,22 +20,12 @@ std::string rgbft(const FilterColor& c) {
 
 class Writer {
  public:
-  Writer(const SceneDesc& s, const PovRecipe& r) : s_(s), r_(r) {}
+  explicit Writer(const SceneDesc& s) : s_(s) {}
 
   PovExport run() {
     // The file name only: the export must not depend on where the repository lies.
     out_ += "// Exported by pvrt from " + std::filesystem::path(s_.path).filename().string() + "\n";
     if (s_.image) out_ += fmt::format("// Render with: +W{} +H{}\n", s_.image->width, s_.image->height);
-    // The sampling recipe with the resolution: the one command line that gives pvrt's image.
-    // (Not SDL: reference/manifest.tsv hashes the export without these two lines, since they
-    // depend on the file's name and --aa-depth, which it records in columns of their own.)
-    const std::string pov = std::filesystem::path(r_.povName).filename().string();
-    const std::string png = std::filesystem::path(pov).replace_extension(".png").string();
-    const int width = s_.image ? s_.image->width : 320, height = s_.image ? s_.image->height : 240;
-    out_ += fmt::format("// Render as `pvrt render --sampler pov --spp {}` does: {}\n",
-                        std::max(1, r_.aaDepth * r_.aaDepth), povCommandLine(pov, png, width, height, r_.aaDepth));
-    out_ +=
-        "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: --spp 1)\n";
     out_ += "#version 3.7;\n";
     const GlobalSettings& g = s_.globals;
     out_ += "global_settings { assumed_gamma 1.0 max_trace_level " + std::to_string(g.maxTraceLevel) +
@@ -205,14 +195,31 @@ class Writer {
   }
 
   const SceneDesc& s_;
-  const PovRecipe& r_;
   std::string out_;
   std::vector<std::string> warnings_;
 };
 
 }  // namespace
 
-PovExport exportPov(const SceneDesc& scene, const PovRecipe& recipe) { return Writer(scene, recipe).run(); }
+PovExport exportPov(const SceneDesc& scene) { return Writer(scene).run(); }
+
+std::string withRecipe(const std::string& sdl, const SceneDesc& scene, const PovRecipe& r) {
+  const std::string pov = std::filesystem::path(r.povName).filename().string();
+  const std::string png = std::filesystem::path(pov).replace_extension(".png").string();
+  const int width = scene.image ? scene.image->width : 320, height = scene.image ? scene.image->height : 240;
+  const std::string recipe =
+      fmt::format("// Render as `pvrt render --sampler pov --spp {}` does: {}\n", std::max(1, r.aaDepth * r.aaDepth),
+                  povCommandLine(pov, png, width, height, r.aaDepth)) +
+      "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: --spp 1)\n";
+  // After the header's comment lines, before the first line of SDL.
+  size_t at = 0;
+  while (sdl.compare(at, 2, "//") == 0) {
+    const size_t end = sdl.find('\n', at);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return sdl.substr(0, at) + recipe + sdl.substr(at);
+}
 
 std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth) {
   std::string aa = aaDepth > 0 ? fmt::format("+A0.0 +AM1 +R{} -J", aaDepth) : "-A";

@@ -22,11 +22,11 @@ int runExport(const ExportOptions& o) {
   out.input(o.scene);
   out.output(o.output, "-o");
   const SceneDesc desc = loadSceneFile(o.scene);
-  const PovExport e = exportPov(desc, PovRecipe{o.aaDepth, o.output == "-" ? "scene.pov" : o.output});
+  const PovExport e = exportPov(desc);
   for (const std::string& w : e.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   if (o.strict && !e.warnings.empty())
     throw Error(ExitCode::SceneError, e.warnings.front() + " (--strict)");
-  out.stageBytes(o.output, e.sdl);
+  out.stageBytes(o.output, withRecipe(e.sdl, desc, PovRecipe{o.aaDepth, o.output == "-" ? "scene.pov" : o.output}));
   out.commit();
   return 0;
 }

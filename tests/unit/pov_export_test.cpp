@@ -12,10 +12,6 @@ std::string exportXml(const std::string& xml) { return exportPov(loadSceneString
 TEST(PovExport, MinimalSceneHasHeaderExplicitCameraAndNothingElse) {
   EXPECT_EQ(exportXml("<scene/>"),
             "// Exported by pvrt from t.xml\n"
-            "// Render as `pvrt render --sampler pov --spp 1` does: povray +Iscene.pov +Oscene.png +W320 +H240 -D "
-            "+FN -A\n"
-            "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: "
-            "--spp 1)\n"
             "#version 3.7;\n"
             "global_settings { assumed_gamma 1.0 max_trace_level 5 adc_bailout 0.00392156862745098 "
             "ambient_light rgb <1, 1, 1> }\n"
@@ -26,11 +22,19 @@ TEST(PovExport, MinimalSceneHasHeaderExplicitCameraAndNothingElse) {
 
 TEST(PovExport, HeaderCarriesTheAntialiasingRecipeAndResolution) {
   const SceneDesc scene = loadSceneString(R"(<scene><image width="64" height="40"/></scene>)", "t.xml");
-  const std::string sdl = exportPov(scene, PovRecipe{3, "out/dir/t.pov"}).sdl;
-  EXPECT_NE(sdl.find("// Render with: +W64 +H40\n// Render as `pvrt render --sampler pov --spp 9` does: povray "
-                     "+It.pov +Ot.png +W64 +H40 -D +FN +A0.0 +AM1 +R3 -J\n"),
-            std::string::npos)
-      << sdl;
+  const std::string sdl = exportPov(scene).sdl;
+  const std::string file = withRecipe(sdl, scene, PovRecipe{3, "out/dir/t.pov"});
+  EXPECT_EQ(file.rfind("// Exported by pvrt from t.xml\n// Render with: +W64 +H40\n"
+                       "// Render as `pvrt render --sampler pov --spp 9` does: povray +It.pov +Ot.png +W64 +H40 -D +FN "
+                       "+A0.0 +AM1 +R3 -J\n// (+A0.0 +AM1 +Rn -J",
+                       0),
+            0u)
+      << file;
+  EXPECT_EQ(file.substr(file.find("#version")), sdl.substr(sdl.find("#version")));  // the SDL untouched
+  // Without <image>, pvrt's default resolution; without --aa-depth, -A.
+  const SceneDesc bare = loadSceneString("<scene/>", "t.xml");
+  EXPECT_NE(withRecipe(exportPov(bare).sdl, bare, {}).find("povray +Iscene.pov +Oscene.png +W320 +H240 -D +FN -A\n"),
+            std::string::npos);
 }
 
 TEST(PovExport, SphereWithMaterialAndTransformsKeepsTextureBeforeTransforms) {
