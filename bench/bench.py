@@ -23,6 +23,8 @@ import tempfile
 import time
 import xml.etree.ElementTree as ET
 
+import pvrt_stats
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 RAW_FIELDS = [
@@ -98,27 +100,6 @@ def run_measured(cmd, cwd, log):
 def read(path):
     with open(path, errors="replace") as f:
         return f.read()
-
-
-def parse_pvrt(text):
-    """The figures of `pvrt render --stats`."""
-    r = {}
-    m = re.search(r"Time\s+load ([\d.]+) s, build ([\d.]+) s, render ([\d.]+) s, write ([\d.]+) s", text)
-    if m:
-        r.update(load_s=float(m[1]), build_s=float(m[2]), render_s=float(m[3]), write_s=float(m[4]))
-    m = re.search(r"BVH\s+(\d+) nodes, .*?([\d.]+) KiB, built in ([\d.]+) s", text)
-    if m:
-        r.update(bvh_nodes=int(m[1]), bvh_kib=float(m[2]), bvh_build_s=float(m[3]))
-    for key, label in [("primary_rays", "Primary rays"), ("shadow_rays", "Shadow rays"),
-                       ("reflected_rays", "Reflected rays"), ("refracted_rays", "Refracted rays"),
-                       ("transmitted_rays", "Transmitted rays"), ("total_rays", "Total rays"),
-                       ("intersection_tests", "Intersection tests")]:
-        m = re.search(r"^\s*" + label + r"\s+(\d+)", text, re.M)
-        if m:
-            r[key] = int(m[1])
-    if r.get("render_s") and r.get("total_rays"):
-        r["rays_per_s"] = r["total_rays"] / r["render_s"]
-    return r
 
 
 def parse_povray(text):
@@ -225,14 +206,19 @@ class Bench:
 
     def measure(self, experiment, scene, objects, renderer, run, threads, cmd, record=True):
         tag = "%s.%s.%s.t%d.r%s" % (experiment, scene, renderer, threads, run)
-        wall, rss, rc = run_measured(cmd, self.work, os.path.join(self.logs, tag))
+        log = os.path.join(self.logs, tag)
+        if renderer == "pvrt":
+            cmd = cmd + ["--stats-json", log + ".json"]
+        wall, rss, rc = run_measured(cmd, self.work, log)
         row = dict(experiment=experiment, scene=scene, objects=objects, renderer=renderer, run=run,
                    threads=threads, width=self.args.width, height=self.args.height, spp=self.args.aa ** 2,
                    status="ok" if rc == 0 else "failed (exit %d, see logs/%s.err)" % (rc, tag),
                    wall_s=wall, peak_rss_kib=rss)
         if rc == 0:
-            log = os.path.join(self.logs, tag)
-            row.update(parse_pvrt(read(log + ".out")) if renderer == "pvrt" else parse_povray(read(log + ".err")))
+            if renderer == "pvrt":
+                row.update({k: v for k, v in pvrt_stats.figures(pvrt_stats.read(log + ".json")).items() if k in RAW_FIELDS})
+            else:
+                row.update(parse_povray(read(log + ".err")))
         if record:
             self.rows.append(row)
         print("  %-9s %-22s %-6s run %-6s %2d threads  wall %7.3f s  render %s  %s" % (

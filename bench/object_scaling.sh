@@ -31,7 +31,7 @@ done
 for ((r = 0; r < rounds; ++r)); do
   for n in "${counts[@]}"; do
     "$pvrt" render "$work/s$n.xml" -o "$work/s$n.png" -W "$width" -H "$height" --spp "$spp" \
-      --threads "$threads" --stats --quiet >>"$work/stats$n.txt"
+      --threads "$threads" --quiet --stats-json "$work/stats$n.r$r.json"
   done
 done
 echo "${width}x${height}, --spp $spp, $threads threads, seed $seed, $rounds round(s)${level:+, max_trace_level $level}"
@@ -39,35 +39,25 @@ printf '%10s %12s %26s %10s %22s %10s %9s %10s %9s\n' spheres "load+build s" "re
   "vs first" "paired: median [min-max]" "tests/ray" "Mrays/s" "2nd/px" "shade/px"
 first=""
 for n in "${counts[@]}"; do
-  row=$(awk -v n="$n" '
-    /^  Time/ { startup += $3 + $6; render[++k] = $9 }
-    /^  Image/ { pixels = $2 * $4 }
-    /^  Total rays/ { rays = $3 }
-    /^  (Reflected|Refracted|Transmitted) rays/ { secondary[$1] = $3 }
-    /^  Shading operations/ { shading = $3 }
-    /^  Intersection tests/ { tests = $3 }
-    END {
-      for (i = 1; i <= k; ++i)  # insertion sort of the render times
-        for (j = i; j > 1 && render[j - 1] > render[j]; --j) { t = render[j]; render[j] = render[j - 1]; render[j - 1] = t }
-      median = render[int((k + 1) / 2)]
-      second = secondary["Reflected"] + secondary["Refracted"] + secondary["Transmitted"]
-      printf "%.4f %.4f %.4f %.4f %.2f %.2f %.3f %.3f\n", startup / k, median, render[1], render[k], tests / rays,
-        rays / median / 1e6, second / pixels, shading / pixels
-    }' "$work/stats$n.txt")
-  read -r startup median lo hi perRay mrays second shading <<<"$row"
+  # The figures of --stats-json; each round of this scene paired with the first scene's same round.
+  read -r startup median lo hi perRay mrays second shading paired < <(python3 - "$n" "${counts[0]}" "$rounds" "$work" <<'PY'
+import json, statistics, sys
+n, first, rounds, work = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+load = lambda m, r: json.load(open("%s/stats%s.r%d.json" % (work, m, r)))
+runs, firsts = [load(n, r) for r in range(rounds)], [load(first, r) for r in range(rounds)]
+render = sorted(j["seconds"]["render"] for j in runs)
+median = render[(len(render) - 1) // 2]
+c = runs[-1]["counts"]
+pixels = runs[-1]["image"]["width"] * runs[-1]["image"]["height"]
+ratios = sorted(a["seconds"]["render"] / b["seconds"]["render"] for a, b in zip(runs, firsts))
+print("%.4f %.4f %.4f %.4f %.2f %.2f %.3f %.3f %.2fx [%.2f-%.2f]" % (
+    statistics.mean(j["seconds"]["load"] + j["seconds"]["build"] for j in runs), median, render[0], render[-1],
+    c["intersection_tests"] / c["total_rays"], c["total_rays"] / median / 1e6,
+    (c["reflected_rays"] + c["refracted_rays"] + c["transmitted_rays"]) / pixels, c["shading_operations"] / pixels,
+    ratios[(len(ratios) - 1) // 2], ratios[0], ratios[-1]))
+PY
+)
   first=${first:-$median}
-  firstStats=${firstStats:-$work/stats$n.txt}
-  # Each round's render against the first scene's in the same round (rendered just before
-  # it, so the machine's drift cancels): the median and range of those ratios.
-  paired=$(awk '
-    FNR == 1 { file++ }
-    /^  Time/ { t[file, ++k[file]] = $9 }
-    END {
-      for (i = 1; i <= k[2]; ++i) r[i] = t[2, i] / t[1, i]
-      for (i = 1; i <= k[2]; ++i)
-        for (j = i; j > 1 && r[j - 1] > r[j]; --j) { x = r[j]; r[j] = r[j - 1]; r[j - 1] = x }
-      printf "%.2fx [%.2f-%.2f]", r[int((k[2] + 1) / 2)], r[1], r[k[2]]
-    }' "$firstStats" "$work/stats$n.txt")
   printf '%10d %12.4f %26s %9.2fx %22s %10.2f %9.2f %10.3f %9.3f\n' "$n" "$startup" "$median [$lo-$hi]" \
     "$(awk -v a="$median" -v b="$first" 'BEGIN { print a / b }')" "$paired" "$perRay" "$mrays" "$second" "$shading"
 done

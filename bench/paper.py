@@ -17,6 +17,7 @@ sys.path.insert(0, HERE)
 
 from bench import write_csv  # noqa: E402
 from speedup import parse_stats, run  # noqa: E402
+import pvrt_stats  # noqa: E402
 import paper_analysis  # noqa: E402
 import paper_builds  # noqa: E402
 import paper_report  # noqa: E402
@@ -63,21 +64,6 @@ def parse_args(argv):
     return a
 
 
-def worker_figures(text):
-    """Per-worker (OpenMP) or per-rank (MPI) work counts and seconds from --stats."""
-    work, secs = [], []
-    for m in re.finditer(r"^  Worker \d+\s+\d+ pixels,\s+\d+ rays,\s+(\d+) work, ([\d.]+) s", text, re.M):
-        work.append(int(m[1]))
-        secs.append(float(m[2]))
-    if not work:
-        for line in text.splitlines():
-            x = line.split()
-            if re.match(r"^  \d+\s+\d+\s+\d+\s+\d+\s+[\d.]+", line) and len(x) == 9:
-                work.append(int(x[3]))
-                secs.append(float(x[4]))
-    return work, secs
-
-
 class Runner:
     def __init__(self, a):
         self.a = a
@@ -106,13 +92,15 @@ class Runner:
                 cmd += ["--chunk", str(chunk)]
             if strategy == "tiles":
                 cmd += ["--tile-size", str(tile)]
-        wall, rss, rc, text = run(cmd, os.path.join(self.logs, tag), env)
-        work, secs = worker_figures(text)
+        log = os.path.join(self.logs, tag)
+        wall, rss, rc, text = run(cmd + ["--stats-json", log + ".json"], log, env)
+        figures = pvrt_stats.figures(pvrt_stats.read(log + ".json"))
+        work, secs = figures.get("worker_work", []), figures.get("worker_seconds", [])
         row = dict(figure=figure, scene=scene, backend=backend, strategy=strategy, chunk=chunk or "",
                    tile=tile if strategy in ("tiles", "dynamic") else "", gather=gather if backend == "mpi" else "",
                    p=p, spp=spp, width=w, height=h, rep=rep, wall_s=wall, peak_rss_kib=rss, note=note,
                    status="ok" if rc == 0 else "failed (exit %d, logs/%s.err)" % (rc, tag))
-        st = parse_stats(text)
+        st = parse_stats(log + ".json")
         row.update({k: v for k, v in st.items() if k in RUN_FIELDS})
         if work:
             row.update(work_total=sum(work), work_max=max(work), worker_work=" ".join(map(str, work)),

@@ -14,6 +14,7 @@ import lbsim
 import loadmap
 import model
 from speedup import parse_stats
+import pvrt_stats
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -32,7 +33,7 @@ def ceiling(a, r):
         for k in range(a.max_p):
             cmd = [a.pvrt, "render", os.path.join(HERE, "..", "scenes", "paper1.xml"), "-o",
                    os.path.join(a.out, "logs", "ceiling-%d.png" % k), "-W", str(a.width), "-H", str(a.height),
-                   "--sampler", "jitter", "--spp", "16", "--threads", "1", "--stats", "--quiet"]
+                   "--sampler", "jitter", "--spp", "16", "--threads", "1", "--stats-json", "-", "--quiet"]
             procs.append(subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True))
         for p in procs:
             st = parse_stats(p.communicate()[0])
@@ -104,9 +105,9 @@ def memory(a, r):
         subprocess.run([a.pvrt, "generate", "--spheres", str(n), "--lights", "5", "--seed", "1", "-o", path],
                        check=True, stdout=subprocess.DEVNULL)
         rc, rss = rss_run(a, r, [a.pvrt, "render", path, "-o", os.path.join(a.out, "logs", "mem.png"), "-W", "32",
-                                 "-H", "20", "--quiet", "--threads", "1", "--stats"], 0, "spheres-%d" % n)
+                                 "-H", "20", "--quiet", "--threads", "1", "--stats-json", "-"], 0, "spheres-%d" % n)
         text = open(os.path.join(a.out, "logs", "rss-spheres-%d.log" % n)).read()
-        kib = [float(m) for m in re.findall(r"^  (?:BVH|Light buffers) .*?([\d.]+) KiB", text, re.M)]
+        kib = [pvrt_stats.figures(pvrt_stats.read(text[text.find("{"):])).get("structures_kib", 0.0)]
         rows.append(dict(kind="objects", width=32, height=20, pixels=640, spheres=n, lights=5, gather="none",
                          ranks=1, rank=0, peak_rss_kib=rss[0], structures_kib=sum(kib),
                          status="ok" if rc == 0 and rss[0] else "failed"))

@@ -23,6 +23,7 @@ import sys
 import time
 
 from bench import write_csv
+import pvrt_stats
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -110,25 +111,10 @@ def run(cmd, log, env=None):
     return wall, usage.ru_maxrss, os.waitstatus_to_exitcode(status), text
 
 
-def parse_stats(text):
-    r = {}
-    m = re.search(r"Time\s+load ([\d.]+) s, build ([\d.]+) s, render ([\d.]+) s, write ([\d.]+) s", text)
-    if m:
-        r.update(load_s=float(m[1]), build_s=float(m[2]), render_s=float(m[3]), write_s=float(m[4]))
-    # MPI rank rows: rank items pixels work compute comm idle wall sent
-    rows = [line.split() for line in text.splitlines() if re.match(r"^  \d+\s+\d+\s+\d+\s+\d+\s+[\d.]+", line)]
-    rows = [x for x in rows if len(x) == 9]
-    if rows:
-        compute = [float(x[4]) for x in rows if int(x[2]) > 0]
-        if compute:
-            r.update(rank_compute_min_s=min(compute), rank_compute_max_s=max(compute),
-                     rank_compute_mean_s=statistics.mean(compute))
-        r["rank_comm_max_s"] = max(float(x[5]) for x in rows)
-        r["rank_idle_max_s"] = max(float(x[6]) for x in rows)
-    m = re.search(r"Imbalance \(max/mean\)\s+work ([\d.]+)", text)
-    if m:
-        r["imbalance_work"] = float(m[1])
-    return r
+def parse_stats(json_path_or_text):
+    """The figures of `pvrt render --stats-json` (bench/pvrt_stats.py) that the tables use."""
+    r = pvrt_stats.figures(pvrt_stats.read(json_path_or_text))
+    return {k: v for k, v in r.items() if k not in ("worker_work", "worker_seconds")}
 
 
 class Runner:
@@ -161,12 +147,13 @@ class Runner:
         group, config, kind, schedule, gather, ranks, threads = conf
         cmd, env = self.command(kind, schedule, gather, ranks, threads, spp)
         tag = re.sub(r"[^A-Za-z0-9_.-]+", "_", "%s.c%d.r%s" % (config, spp, rnd))
-        wall, rss, rc, text = run(cmd, os.path.join(self.logs, tag), env)
+        log = os.path.join(self.logs, tag)
+        wall, rss, rc, text = run(cmd + ["--stats-json", log + ".json"], log, env)
         row = dict(group=group, config=config, kind=kind, schedule=schedule, gather=gather, ranks=ranks,
                    threads=threads, p=ranks * threads, run=rnd, spp=spp, width=self.a.width, height=self.a.height,
                    status="ok" if rc == 0 else "failed (exit %d, logs/%s.err)" % (rc, tag), wall_s=wall,
                    peak_rss_kib=rss)
-        row.update(parse_stats(text))
+        row.update(parse_stats(log + ".json"))
         self.rows.append(row)
         print("  %-40s c=%-3d run %-3s wall %7.3f s  render %s  %s" % (
             config, spp, rnd, wall, "%7.4f s" % row["render_s"] if "render_s" in row else "    n/a", row["status"]),
@@ -183,14 +170,13 @@ class Runner:
             for k in range(n):
                 log = os.path.join(self.logs, "ceiling.together.r%d.%d" % (rnd, k))
                 out = open(log + ".out", "w")
-                cmd = self.render_cmd(self.a.spp, 1, "tiles")
+                cmd = self.render_cmd(self.a.spp, 1, "tiles") + ["--stats-json", log + ".json"]
                 cmd[cmd.index("-o") + 1] = os.path.join(self.a.out, "ceiling-%d.png" % k)
                 procs.append((subprocess.Popen(cmd, stdout=out, stderr=subprocess.DEVNULL), out, log))
             for p, out, log in procs:
                 rc = p.wait()
                 out.close()
-                with open(log + ".out") as f:
-                    stats = parse_stats(f.read())
+                stats = parse_stats(log + ".json")
                 self.rows.append(dict(group="ceiling", config="together x%d" % n, kind="openmp", schedule="tiles",
                                       ranks=1, threads=1, p=1, run=rnd, spp=self.a.spp, width=self.a.width,
                                       height=self.a.height, status="ok" if rc == 0 else "failed (exit %d)" % rc,

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace pvrt {
@@ -201,6 +202,24 @@ class Writer {
 }  // namespace
 
 PovExport exportPov(const SceneDesc& scene) { return Writer(scene).run(); }
+
+std::string withRecipe(const std::string& sdl, const SceneDesc& scene, const PovRecipe& r) {
+  const std::string pov = std::filesystem::path(r.povName).filename().string();
+  const std::string png = std::filesystem::path(pov).replace_extension(".png").string();
+  const int width = scene.image ? scene.image->width : 320, height = scene.image ? scene.image->height : 240;
+  const std::string recipe =
+      fmt::format("// Render as `pvrt render --sampler pov --spp {}` does: {}\n", std::max(1, r.aaDepth * r.aaDepth),
+                  povCommandLine(pov, png, width, height, r.aaDepth)) +
+      "// (+A0.0 +AM1 +Rn -J: the pixel's centre ray and an n x n grid, no jitter, pvrt's --spp n*n; -A: --spp 1)\n";
+  // After the header's comment lines, before the first line of SDL.
+  size_t at = 0;
+  while (sdl.compare(at, 2, "//") == 0) {
+    const size_t end = sdl.find('\n', at);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return sdl.substr(0, at) + recipe + sdl.substr(at);
+}
 
 std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth) {
   std::string aa = aaDepth > 0 ? fmt::format("+A0.0 +AM1 +R{} -J", aaDepth) : "-A";

@@ -19,6 +19,19 @@ struct PovExport {
 
 PovExport exportPov(const SceneDesc& scene);
 
+// How the export is to be rendered: the POV-Ray command line that samples as `pvrt render
+// --sampler pov --aa-depth n` does, at the scene's resolution (320 x 240 without <image>),
+// reading `povName` (a file name, folders left out).
+struct PovRecipe {
+  int aaDepth = 0;  // n of +Rn; 0 for -A (pvrt's --spp 1)
+  std::string povName = "scene.pov";
+};
+
+// `sdl` (exportPov's) with the recipe as two comment lines after its header comment, as
+// `pvrt export-pov` writes it. Apart from exportPov() so that the SDL, and its hash in
+// reference/manifest.tsv, do not depend on the file's name or the AA depth asked for.
+std::string withRecipe(const std::string& sdl, const SceneDesc& scene, const PovRecipe& recipe);
+
 // The POV-Ray command line that renders an export the way pvrt's `pov` sampler does
 // (`+A0.0 +AM1 +Rn -J`, or `-A` for one sample per pixel).
 std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth);

@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libtinyxml2-dev libpng-dev libopenimageio-dev openimageio-tools libfmt-dev libcli11-dev libssl-dev
+  libtinyxml2-dev libpng-dev libopenimageio-dev openimageio-tools libfmt-dev libcli11-dev libssl-dev nlohmann-json3-dev
   libgtest-dev libomp-dev
   libopenmpi-dev openmpi-bin
   povray

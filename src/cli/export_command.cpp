@@ -14,6 +14,7 @@ namespace {
 struct ExportOptions {
   std::string scene, output;
   bool strict = false;
+  int aaDepth = 0;
 };
 
 int runExport(const ExportOptions& o) {
@@ -25,7 +26,7 @@ int runExport(const ExportOptions& o) {
   for (const std::string& w : e.warnings) std::fprintf(stderr, "%s\n", w.c_str());
   if (o.strict && !e.warnings.empty())
     throw Error(ExitCode::SceneError, e.warnings.front() + " (--strict)");
-  out.stageBytes(o.output, e.sdl);
+  out.stageBytes(o.output, withRecipe(e.sdl, desc, PovRecipe{o.aaDepth, o.output == "-" ? "scene.pov" : o.output}));
   out.commit();
   return 0;
 }
@@ -37,6 +38,9 @@ Command addExportCommand(CLI::App& app) {
   CLI::App* c = app.add_subcommand("export-pov", "Export an XML scene to POV-Ray 3.7 scene language");
   c->add_option("scene", o->scene, "Scene file (XML)")->required();
   c->add_option("-o,--output", o->output, "POV-Ray file to write")->required();
+  c->add_option("--aa-depth", o->aaDepth,
+                 "The header's command line samples as pvrt's --spp n*n: +A0.0 +AM1 +Rn -J (default: -A, --spp 1)")
+      ->check(CLI::Range(1, 9));
   c->add_flag("--strict", o->strict, "Treat anything that cannot be exported as an error");
   return [o] { return runExport(*o); };
 }

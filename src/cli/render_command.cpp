@@ -17,15 +17,18 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cli/stats_json.h"
 #include "core/output_files.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/memory_limit.h"
 #include "image/image_io.h"
+#include "image/load_map_picture.h"
 #include "parallel/cluster.h"
 #include "parallel/threads.h"
 #include "render/distributed.h"
 #include "render/renderer.h"
+#include "render/render_region.h"
 #include "render/time_budget.h"
 #include "core/memory_use.h"
 #include "scene/xml_loader.h"
@@ -70,7 +73,7 @@ int interrupted() {
 
 struct RenderOptions {
   std::string scene, output, saveScene, samplerName = "pov", scheduleName, backendName = "openmp";
-  std::string gatherName = "gather", loadMap, memoryLimit;
+  std::string gatherName = "gather", loadMap, memoryLimit, statsJson;
   bool masterRenders = true;
   double mpiTimeout = 30;  // seconds a rank of the node may be stopped before the job ends
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
@@ -78,6 +81,7 @@ struct RenderOptions {
   bool stats = false, quiet = false;
   bool hasTimeBudget = false;
   double timeBudget = 0;  // seconds, when hasTimeBudget
+  RegionBounds region;    // POV-Ray's +SC/+EC/+SR/+ER
 };
 
 using Clock = std::chrono::steady_clock;
@@ -105,6 +109,9 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   fmt::print("Render statistics\n");
   fmt::print("  Image                 {} x {}, {} rays/pixel ({} sampler, spp {})\n", s.width, s.height,
              PixelSampler(s.sampler).count(), samplerName(s.sampler.kind), s.sampler.samplesPerPixel);
+  if (s.region)
+    fmt::print("  Region                columns {}-{}, rows {}-{} ({} x {})\n", s.region->x0 + 1, s.region->x1,
+               s.region->y0 + 1, s.region->y1, s.region->x1 - s.region->x0, s.region->y1 - s.region->y0);
   if (ranks.empty()) {
     fmt::print("  Backend               {}, {} worker(s), schedule {}\n", o.backendName, r.workers.size(),
                strategyName(s.schedule.strategy));
@@ -192,31 +199,15 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   }
 }
 
-// The load map as the paper's figures show it: linear work counts in an EXR and a
-// log-scale false-colour PNG (dark blue: little work, yellow-white: most).
+// The load map: linear work counts in an EXR, and a log-scale false-colour PNG with a
+// colour bar (image/load_map_picture.h), as the paper's figures show it.
 void stageLoadMap(OutputFiles& out, const std::string& prefix, const std::vector<float>& load, int width,
                   int height) {
-  Image raw(width, height), colour(width, height);
-  // Log scale from the cheapest pixel to the dearest, so that both ends are visible.
-  float lo = 0, hi = 0;
-  if (!load.empty()) {
-    const auto [mn, mx] = std::minmax_element(load.begin(), load.end());
-    lo = *mn;
-    hi = *mx;
-  }
-  const double logLo = std::log1p(double(lo)), logSpan = std::log1p(double(hi)) - logLo;
-  static const Color ramp[] = {{0.0, 0.0, 0.05}, {0.1, 0.0, 0.4}, {0.6, 0.05, 0.3}, {0.95, 0.4, 0.0}, {1.0, 1.0, 0.6}};
+  Image raw(width, height);
   for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const double v = load[size_t(y) * width + x];
-      raw.set(x, y, Color(v));
-      const double t = logSpan > 0 ? (std::log1p(v) - logLo) / logSpan * 4.0 : 0.0;
-      const int i = std::min(3, int(t));
-      const double f = t - i;
-      colour.set(x, y, ramp[i] * (1 - f) + ramp[i + 1] * f);
-    }
+    for (int x = 0; x < width; ++x) raw.set(x, y, Color(load[size_t(y) * width + x]));
   writeImageFile(raw, out.stage(prefix + ".exr"), ".exr", prefix + ".exr");
-  writeImageFile(colour, out.stage(prefix + ".png"), ".png", prefix + ".png");
+  writeImageFile(loadMapPicture(load, width, height), out.stage(prefix + ".png"), ".png", prefix + ".png");
 }
 
 // The image in the format of `-o` (imageFormatOf: "-" is standard output, as PNG).
@@ -240,6 +231,19 @@ void planOutputs(const RenderOptions& o, OutputFiles& out) {
     out.output(o.loadMap + ".png", "--load-map");
   }
   if (!o.saveScene.empty()) out.output(o.saveScene, "--save-scene");
+  if (!o.statsJson.empty()) out.output(o.statsJson, "--stats-json");
+}
+
+// --stats-json: staged with the other outputs, so that all or none of them appear.
+void stageStatsJson(OutputFiles& out, const RenderOptions& o, const RenderSettings& s, const Scene& scene,
+                    const RenderResult& r, RunFigures run, const std::vector<RankStats>& ranks = {}) {
+  if (o.statsJson.empty()) return;
+  run.scene = o.scene;
+  run.output = o.output;
+  run.backend = o.backendName;
+  run.gather = o.gatherName;
+  run.peakBytes = peakResidentBytes();
+  out.stageBytes(o.statsJson, statsJson(run, s, scene, r, ranks));
 }
 
 // Everything up to a built scene; local to each process (and to each MPI rank).
@@ -277,6 +281,7 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   if (static_cast<long long>(s.width) * s.height > ImageDesc::kMaxPixels)
     throw Error(ExitCode::Usage, fmt::format("pvrt: error: image of {} x {} pixels is more than {}", s.width,
                                              s.height, ImageDesc::kMaxPixels));
+  if (o.region.any()) s.region = parseRegion(o.region, s.width, s.height);
   s.sampler.kind = parseSamplerKind(o.samplerName);
   s.sampler.samplesPerPixel = o.aaDepth > 0 ? o.aaDepth * o.aaDepth : o.spp;
   s.sampler.seed = o.seed;
@@ -305,6 +310,17 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   p.buildS = since(t1);
   p.buildPeak = peakResidentBytes();
   return p;
+}
+
+RunFigures stageFigures(const Prepared& p, double writeSeconds, const BudgetPlan* budget) {
+  RunFigures f;
+  f.loadSeconds = p.loadS;
+  f.buildSeconds = p.buildS;
+  f.writeSeconds = writeSeconds;
+  f.loadPeakBytes = p.loadPeak;
+  f.buildPeakBytes = p.buildPeak;
+  f.budget = budget;
+  return f;
 }
 
 // "3.2 hours", "12 minutes", "40 seconds".
@@ -336,15 +352,21 @@ int runLocal(const RenderOptions& o) {
   planOutputs(o, out);
   Prepared p = prepare(o, true);
   if (interrupt::requested()) return interrupted();
+  std::optional<BudgetPlan> budget;
   if (o.hasTimeBudget) {
-    const BudgetPlan plan = planForBudget(p.scene, p.settings, o.timeBudget);
+    // The budget is the whole run's: what loading and building took is spent already.
+    const BudgetPlan& plan = budget.emplace(planForBudget(p.scene, p.settings, o.timeBudget, since(start)));
     p.settings.sampler.samplesPerPixel = plan.samplesPerPixel;
-    if (!o.quiet)
-      fmt::print("time budget {:.3g} s: pilot {} x {} at c={} took {:.4f} s ({:.3g} s per camera ray); "
-                 "chose --spp {} (predicted render {:.3f} s{})\n",
-                 o.timeBudget, plan.pilotWidth, plan.pilotHeight, plan.pilotSamplesPerPixel, plan.pilotSeconds,
-                 plan.secondsPerSample, plan.samplesPerPixel, plan.predictedSeconds,
-                 plan.fits ? "" : ", over the budget even at c=1");
+    if (!o.quiet) {
+      std::string pilots;
+      for (size_t i = 0; i < plan.pilotSamples.size(); ++i)
+        pilots += fmt::format("{}c={}: {:.3g} s/pixel", i ? ", " : "", plan.pilotSamples[i],
+                              plan.points[i].secondsPerPixel);
+      fmt::print("time budget {:.3g} s: {} pilot(s) on {:.1f}% of the pixels took {:.3f} s ({}); chose --spp {} "
+                 "(predicted render {:.3f} s{})\n",
+                 o.timeBudget, plan.pilotSamples.size(), 100 * plan.pilotShare, plan.pilotSeconds, pilots,
+                 plan.samplesPerPixel, plan.predictedSeconds, plan.fits ? "" : ", over the budget even at c=1");
+    }
   }
   announceLongRenders(p.settings);
   const RenderSettings& s = p.settings;
@@ -356,13 +378,15 @@ int runLocal(const RenderOptions& o) {
   // From here on an interrupt lets the (atomic) write finish: the image is complete.
   const auto t2 = Clock::now();
   stageImage(out, o.output, r.image);
-  if (!o.loadMap.empty()) stageLoadMap(out, o.loadMap, r.load, s.width, s.height);
+  if (!o.loadMap.empty()) stageLoadMap(out, o.loadMap, r.load, r.image.width(), r.image.height());
   if (!o.saveScene.empty()) out.stageBytes(o.saveScene, p.savedScene);
+  const double writeS = since(t2);  // encoding; the commit renames
+  stageStatsJson(out, o, s, p.scene, r, stageFigures(p, writeS, budget ? &*budget : nullptr));
   out.commit();
-  const double writeS = since(t2);
   warnNonFinite(r.totals);
   if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS, {p.loadPeak, p.buildPeak});
-  if (!o.quiet && !o.stats) fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, s.width, s.height, since(start));
+  if (!o.quiet && !o.stats)
+    fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, r.image.width(), r.image.height(), since(start));
   return 0;
 }
 
@@ -432,14 +456,17 @@ int runMpi(const RenderOptions& o) {
   const RenderSettings& s = p->settings;
   const auto t2 = Clock::now();
   stageImage(*out, o.output, r.render.image);
-  if (!o.loadMap.empty()) stageLoadMap(*out, o.loadMap, r.render.load, s.width, s.height);
+  if (!o.loadMap.empty())
+    stageLoadMap(*out, o.loadMap, r.render.load, r.render.image.width(), r.render.image.height());
   if (!o.saveScene.empty()) out->stageBytes(o.saveScene, p->savedScene);
+  const double writeS = since(t2);  // encoding; the commit renames
+  stageStatsJson(*out, o, s, p->scene, r.render, stageFigures(*p, writeS, nullptr), r.ranks);
   out->commit();
-  const double writeS = since(t2);
   warnNonFinite(r.render.totals);
   if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, {p->loadPeak, p->buildPeak}, r.ranks);
   if (!o.quiet && !o.stats)
-    fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, s.width, s.height, cluster::size(),
+    fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, r.render.image.width(),
+               r.render.image.height(), cluster::size(),
                r.render.seconds);
   return 0;
 }
@@ -496,6 +523,12 @@ Command addRenderCommand(CLI::App& app) {
                 "(0: never)")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
+  c->add_option("--start-col", o->region.startCol,
+                "Render only from this column (POV-Ray's +SC): a pixel number from 1, or a share 0.0-1.0; the "
+                "output holds the region alone");
+  c->add_option("--end-col", o->region.endCol, "... to this column, included (+EC)");
+  c->add_option("--start-row", o->region.startRow, "... from this row (+SR)");
+  c->add_option("--end-row", o->region.endRow, "... to this row, included (+ER)");
   c->add_option("--load-map", o->loadMap,
                 "Write the work per pixel to PREFIX.exr (counts) and PREFIX.png (log-scale false colour)");
   c->add_option("--save-scene", o->saveScene, "Also write the scene as loaded (with the resolution used)");
@@ -504,6 +537,8 @@ Command addRenderCommand(CLI::App& app) {
                 "memory, and for light buffers at most 4 times the BVH's, at least 64M); lights beyond it go "
                 "without a light buffer (the same image, rendered slower or faster)");
   c->add_flag("--stats", o->stats, "Print render statistics (rays by kind, tests, effects, time)");
+  c->add_option("--stats-json", o->statsJson,
+                "Write every figure of --stats to FILE as JSON (written with the image; - for standard output)");
   c->add_flag("-q,--quiet", o->quiet, "No progress bar or summary line");
   return [o, budget] {
     o->hasTimeBudget = budget->count() > 0;

@@ -304,7 +304,9 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   // hands the same tiles out on demand.
   ScheduleSettings cut = s.schedule;
   if (strategy == Strategy::Dynamic) cut.strategy = Strategy::Tiles;
-  const WorkPlan plan = makeWorkPlan(cut, s.width, s.height, n);
+  RenderSettings area = s;
+  area.schedule = cut;
+  const WorkPlan plan = planArea(area, n);
 
   RankRenderer local(scene, s, plan);
   const double commBefore = cluster::counters().seconds;
@@ -351,6 +353,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   r.image = Image::unfilled(s.width, s.height);  // the payloads cover every pixel
   if (s.loadMap) r.load.assign(size_t(s.width) * s.height, 0.0f);
   unpack(all, plan, r, s.width);
+  cropToArea(r, s);
   r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);
   const size_t k = packed.size();
   size_t at = 0;  // into threadFigures

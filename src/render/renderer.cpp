@@ -4,8 +4,10 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <string>
 #include <thread>
 
+#include "core/error.h"
 #include "core/interrupt.h"
 #include "render/kernel.h"
 
@@ -65,10 +67,46 @@ void renderRect(const Scene& scene, const PixelSampler& sampler, EffectSet effec
   kernelFor(effects)(scene, sampler, rect, image, load, stats);
 }
 
+WorkItem renderArea(const RenderSettings& s) {
+  if (!s.region) return {0, 0, s.width, s.height};
+  const WorkItem& r = *s.region;
+  if (r.x0 < 0 || r.y0 < 0 || r.x1 > s.width || r.y1 > s.height || r.x0 >= r.x1 || r.y0 >= r.y1)
+    throw Error(ExitCode::Usage, "pvrt: error: region columns " + std::to_string(r.x0 + 1) + "-" +
+                                     std::to_string(r.x1) + ", rows " + std::to_string(r.y0 + 1) + "-" +
+                                     std::to_string(r.y1) + " is not a non-empty part of the " +
+                                     std::to_string(s.width) + " x " + std::to_string(s.height) + " image");
+  return r;
+}
+
+WorkPlan planArea(const RenderSettings& s, int workers) {
+  const WorkItem area = renderArea(s);
+  WorkPlan plan = makeWorkPlan(s.schedule, area.x1 - area.x0, area.y1 - area.y0, workers);
+  for (WorkItem& it : plan.items) it = {it.x0 + area.x0, it.y0 + area.y0, it.x1 + area.x0, it.y1 + area.y0};
+  return plan;
+}
+
+void cropToArea(RenderResult& r, const RenderSettings& s) {
+  if (!s.region) return;
+  const WorkItem a = renderArea(s);
+  const int w = a.x1 - a.x0, h = a.y1 - a.y0;
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    std::copy_n(r.image.row(a.y0 + y) + size_t(a.x0) * 3, size_t(w) * 3, image.row(y));
+  r.image = std::move(image);
+  if (r.load.empty()) return;
+  std::vector<float> load(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    std::copy_n(r.load.data() + size_t(a.y0 + y) * size_t(s.width) + size_t(a.x0), size_t(w),
+                load.data() + size_t(y) * size_t(w));
+  r.load = std::move(load);
+}
+
 RenderResult render(const Scene& scene, const RenderSettings& settings) {
   const auto t0 = Clock::now();
   RenderResult result;
-  result.image = Image::unfilled(settings.width, settings.height);  // the plan covers every pixel
+  // Full size, so that every pixel is traced as in the whole image; the plan covers the
+  // area (or a stride of it), and only those pixels are read.
+  result.image = Image::unfilled(settings.width, settings.height);
   if (settings.loadMap) result.load.assign(size_t(settings.width) * settings.height, 0.0f);
   const PixelSampler sampler(settings.sampler);
   result.effects = scene.effects | (sampler.count() > 1 ? kSupersampling : 0u);
@@ -77,12 +115,18 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   const int workers = settings.backend == Backend::Serial
                           ? 1
                           : (settings.threads > 0 ? settings.threads : threadBudget());
-  const WorkPlan plan = makeWorkPlan(settings.schedule, settings.width, settings.height, workers);
+  WorkPlan plan = planArea(settings, workers);
+  if (settings.itemStride > 1) {  // owners (block, cyclic) are the runtime's then: tiles
+    WorkPlan sample;
+    for (size_t i = 0; i < plan.items.size(); i += size_t(settings.itemStride)) sample.items.push_back(plan.items[i]);
+    plan = std::move(sample);
+  }
   result.workers.assign(size_t(workers), WorkerStats{});
 
   std::atomic<long> done{0};
   std::atomic<bool> cancelled{false};
-  const long total = long(settings.width) * settings.height;
+  long total = 0;
+  for (const WorkItem& it : plan.items) total += it.pixels();
   Watchdog watchdog(settings, done, total, plan.items.size(), workers, t0);
   parallelFor(settings.backend, workers, plan, [&](size_t i, int worker) {
     if (interrupt::requested()) {
@@ -100,6 +144,7 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   });
   for (const WorkerStats& ws : result.workers) result.totals += ws.counts;
   result.cancelled = cancelled;
+  cropToArea(result, settings);
   result.seconds = secondsSince(t0);
   return result;
 }

@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "image/image.h"
@@ -22,6 +23,12 @@ struct RenderSettings {
   int threads = 0;  // 0: OpenMP's default
   ScheduleSettings schedule;
   bool loadMap = false;  // record the work of every pixel
+  // Only these pixels of the width x height image are rendered, each exactly as in the
+  // whole image (`pvrt render --region`); the result is the region's size. Empty: all.
+  std::optional<WorkItem> region;
+  // Renders only every itemStride-th work item of the plan (the time budget's pilot: a
+  // sample of the image at its own resolution); the other pixels are left unset.
+  int itemStride = 1;
   // Called now and then from one worker with the pixels finished so far; may be empty.
   std::function<void(long done, long total)> progress;
   // Called at most once, from a watchdog thread, when the render is predicted to take at
@@ -58,6 +65,15 @@ struct RenderResult {
 };
 
 RenderResult render(const Scene& scene, const RenderSettings& settings);
+
+// The pixels a render computes: settings.region, or the whole image. Throws
+// pvrt::Error(Usage) when the region is empty or leaves the image.
+WorkItem renderArea(const RenderSettings& settings);
+// The schedule's plan over renderArea(), its items in the whole image's coordinates, so
+// that every pixel is traced as it is in the whole image.
+WorkPlan planArea(const RenderSettings& settings, int workers);
+// A full-size result cut down to renderArea() (image and load map); nothing without a region.
+void cropToArea(RenderResult& result, const RenderSettings& settings);
 
 // Renders the pixels of one rectangle into `image` with the kernel for `effects`;
 // `load` (may be null) receives per-pixel work. Used by every backend.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <mutex>
@@ -45,6 +46,7 @@ const std::vector<std::string_view>& knownAttributes(std::string_view element) {
     };
     return std::unordered_map<std::string_view, std::vector<std::string_view>>{
         {"scene", {}},
+        {"include", {"file"}},
         {"image", {"width", "height"}},
         {"global_settings", {"max_trace_level", "adc_bailout", "ambient_light"}},
         {"background", {"color"}},
@@ -148,13 +150,21 @@ struct PieceRead {
 // The split counted an object that the piece did not hold, or the other way round.
 struct Miscounted {};
 
+std::string withLineFeeds(std::string_view bytes);
+
+// Included files nest at most this deep (a chain of includes that never ends is a cycle,
+// which is refused first; this bounds a long chain of distinct files).
+constexpr size_t kMaxIncludeDepth = 16;
+
 class Loader {
  public:
   // InOrder: elements are read in file order, each knowing everything before it. Ahead: a
   // piece is read before the pieces in front of it, and leaves what depends on them pending.
   enum class Mode { InOrder, Ahead };
 
-  explicit Loader(FileName file, Mode mode = Mode::InOrder) : file_(file), ahead_(mode == Mode::Ahead) {}
+  explicit Loader(FileName file, Mode mode = Mode::InOrder) : file_(file), ahead_(mode == Mode::Ahead) {
+    including_.push_back({file.str(), identity(file.str())});
+  }
 
   // The whole file as one tree.
   SceneDesc load(const tinyxml2::XMLDocument& doc) {
@@ -338,7 +348,9 @@ class Loader {
     scene_.materials.push_back(std::move(m));
   }
   std::string alreadyDefined(const std::string& name, size_t other) const {
-    return "material '" + name + "' is already defined at line " + std::to_string(scene_.materials[other].loc.line);
+    const SourceLoc& at = scene_.materials[other].loc;
+    return "material '" + name + "' is already defined at " +
+           (at.file == file_ ? "line " + std::to_string(at.line) : at.str());
   }
   static std::string notDefined(const std::string& name) {
     return "no material named '" + printable(name) + "' is defined before it";
@@ -397,11 +409,70 @@ class Loader {
     } else if (name == "material") {
       if (ahead_) return defer(e, namedMaterial(e));
       addMaterial(namedMaterial(e));
+    } else if (name == "include") {
+      include(e);
     } else {
       std::optional<std::string> use;  // read ahead: the named material it uses, pending
       add(object(e, use));
       if (use) defer(e, MaterialUse{next_ - 1, std::move(*use)});
     }
+  }
+
+  // <include file="..."/>: the children of another file's <scene>, read here as if written
+  // in place (so its materials are known after it, and a second camera in it is refused).
+  // The path is relative to the including file's folder; messages about what is in the
+  // file name that file and its lines.
+  void include(const XMLElement* e) {
+    // A piece read on its own has room for the objects the split counted in it, and an
+    // included file's are not among them: the file is then read whole (it is not big).
+    if (places_) throw Miscounted{};
+    Attributes a = attrs(e);
+    const std::string file = a.text("file");
+    a.done();
+    noChildren(e);
+    if (file.empty()) throw errorAt(e, "the file attribute is empty");
+    namespace fs = std::filesystem;
+    const std::string path =
+        fs::path(file).is_absolute() ? file : (fs::path(file_.str()).parent_path() / file).lexically_normal().string();
+    const std::string id = identity(path);
+    std::string chain;
+    for (const Including& i : including_) chain += printableName(i.name) + " -> ";
+    chain += printableName(path);
+    for (const Including& i : including_)
+      if (!id.empty() && i.id == id) throw errorAt(e, "\"" + printable(file) + "\" makes a cycle: " + chain);
+    if (including_.size() > kMaxIncludeDepth)
+      throw errorAt(e, "more than " + std::to_string(kMaxIncludeDepth) + " nested includes: " + chain);
+    // Only regular files: a pipe or a device (/dev/stdin) could keep the loader waiting.
+    std::error_code ec;
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+      throw errorAt(e, "cannot include \"" + printable(file) + "\": not a regular file");
+    std::string bytes;
+    try {
+      bytes = readSceneBytes(path);
+    } catch (const Error& err) {
+      throw errorAt(e, std::string("cannot include \"") + printable(file) + "\": " + err.what());
+    }
+    std::string_view text = bytes;
+    const std::string lineFeeds = withLineFeeds(text);
+    if (!lineFeeds.empty()) text = lineFeeds;
+    checkSceneText(text, path);
+    tinyxml2::XMLDocument doc;
+    parseCheckedText(doc, text, path);
+    const FileName outer = file_;
+    const std::string scenePath = scene_.path;
+    file_ = FileName(path);
+    including_.push_back({path, id});
+    const XMLElement* root = begin(doc);
+    for (const XMLElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) element(c);
+    including_.pop_back();
+    file_ = outer;
+    scene_.path = scenePath;
+  }
+  // What makes two names one file (its canonical path), or "" when it has none.
+  static std::string identity(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::weakly_canonical(path, ec);
+    return ec ? std::string() : p.string();
   }
 
   SourceLoc locOf(const XMLElement* e) const { return {file_, e->GetLineNum() + lineOffset_}; }
@@ -856,6 +927,10 @@ class Loader {
   ObjectDesc* places_ = nullptr;
   size_t next_ = 0, end_ = 0;
   std::vector<Pending> pending_;  // Mode::Ahead: what settle() will do, in file order
+  struct Including {
+    std::string name, id;  // as messages show it; identity()
+  };
+  std::vector<Including> including_;  // the file being read, and those including it, outermost first
 };
 
 // The file with the root's children replaced by their newlines alone: its declaration,

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Usage: bench_smoke.sh PVRT OUT_DIR
+# Usage: bench_smoke.sh PVRT OUT_DIR (OUT_DIR absolute)
 # The benchmark suite runs end to end in --quick mode and writes its tables. No timing is
 # checked: the numbers of a quick run on a busy machine mean nothing.
 set -euo pipefail
 pvrt=$1 out=$2
 root=$(cd "$(dirname "$0")/../.." && pwd)
 rm -rf "$out"
-"$root/bench/run.sh" --quick --pvrt "$pvrt" --out "$out"
+# --pvrt as a user types it from the folder above the build: a relative path (build/pvrt).
+bindir=$(cd "$(dirname "$pvrt")" && pwd)
+cd "$(dirname "$bindir")"
+"$root/bench/run.sh" --quick --pvrt "$(basename "$bindir")/$(basename "$pvrt")" --out "$out"
 fail() { echo "FAIL: $*"; exit 1; }
 for f in results.csv summary.csv results.md; do [ -s "$out/$f" ] || fail "$f not written"; done
 head -1 "$out/results.csv" | grep -q '^experiment,scene,objects,renderer,run,threads,' || fail "results.csv header"

@@ -21,9 +21,10 @@ check() {
     failed=1
   fi
 }
-# prim_triangle: pvrt's render differs from POV-Ray's by 1 level in a few channels
-# (reference/README.md), within the default thresholds.
-"$pvrt" render "$root/scenes/prim_triangle.xml" -o "$work/tri.png" -W 160 -H 100 --spp 9 --sampler pov --quiet || exit 1
+# A reference made brighter by about a third of a level: nearly every channel 1 level off,
+# none more, within the default thresholds (pvrt's own renders of the corpus are now too
+# close to POV-Ray's to serve: reference/README.md).
+oiiotool "$ref/prim_triangle.png" --addc 0.003 -o "$work/tri.png" || exit 1
 check 0 '^PASS \(identical\)$' "$ref/paper1.png" "$ref/paper1.png"
 check 0 '^PASS \(within 2 levels' "$work/tri.png" "$ref/prim_triangle.png"
 check 1 '^FAILURE$' "$work/tri.png" "$ref/prim_triangle.png" --max-levels 0

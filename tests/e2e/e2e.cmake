@@ -150,11 +150,11 @@ set_tests_properties(e2e.generate.radii PROPERTIES LABELS e2e)
 pvrt_expect_error(generate_radius_max_below_min 2 "radius-min <= radius-max"
   ABSENT out.xml ARGS generate --spheres 100 --radius-max 0.1 -o <DIR>/out.xml)
 
-# `pvrt render --time-budget`: a square c is chosen and printed; budgets must be positive.
+# `pvrt render --time-budget`: pilots at c = 1 and up, a square c chosen and printed; budgets must be positive.
 add_test(NAME e2e.time_budget
   COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget.png -W 32 -H 20 --time-budget 0.2)
 set_tests_properties(e2e.time_budget PROPERTIES LABELS e2e
-  PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: pilot 8 x 5 at c=[0-9]+ took [0-9.]+ s .*chose --spp [0-9]+ \\(predicted render")
+  PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: [1-6] pilot\\(s\\) on [0-9.]+% of the pixels took [0-9.]+ s \\(c=1: [0-9.e+-]+ s/pixel.*\\); chose --spp [0-9]+ \\(predicted render")
 pvrt_expect_error(time_budget_zero 2 "--time-budget must be a positive number of seconds, got 0"
   ARGS render ${PVRT_PAPER1} --time-budget 0)
 pvrt_expect_error(time_budget_negative 2 "--time-budget must be a positive number of seconds, got -1"
@@ -269,3 +269,44 @@ set_tests_properties(e2e.generate.extremes_load PROPERTIES LABELS e2e)
 add_test(NAME e2e.deep_trace
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/deep_trace.sh $<TARGET_FILE:pvrt> ${PVRT_E2E_DIR}/deep_trace)
 set_tests_properties(e2e.deep_trace PROPERTIES LABELS e2e TIMEOUT 180)
+
+# <include file="..."/>: a scene split over nested files renders as the same scene in one file, from any
+# folder; errors inside an included file name that file and its line; cycles show their chain.
+add_test(NAME e2e.include.same_as_one_file
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/include_same.sh $<TARGET_FILE:pvrt> ${CMAKE_CURRENT_SOURCE_DIR}/e2e/include
+          ${PVRT_E2E_DIR}/include)
+set_tests_properties(e2e.include.same_as_one_file PROPERTIES LABELS e2e TIMEOUT 60)
+pvrt_expect_error(include_cycle 3
+  "^.*/bad/include/sub/cycle_b\\.xml:3: error: include: \"\\.\\./cycle_a\\.xml\" makes a cycle: .*/cycle_top\\.xml -> .*/include/cycle_a\\.xml -> .*/include/sub/cycle_b\\.xml -> .*/include/cycle_a\\.xml$"
+  ARGS render ${BAD}/include/cycle_top.xml)
+pvrt_expect_error(include_error_inside 3 "^.*/bad/include/typo\\.xml:4: error: sphere: unknown attribute 'radus'"
+  ARGS render ${BAD}/include/typo_top.xml)
+pvrt_expect_error(include_second_camera 3 "^.*/bad/include/camera\\.xml:2: error: camera: may appear only once$"
+  ARGS render ${BAD}/include/second_camera_top.xml)
+pvrt_expect_error(include_malformed 3 "^.*/bad/include/broken\\.xml:[0-9]+: error: "
+  ARGS render ${BAD}/include/not_xml_top.xml)
+
+# A render region (POV-Ray's +SC +EC +SR +ER): its pixels are the whole image's, cut out, on the serial and
+# OpenMP backends (tests/mpi: under mpirun); bad bounds are usage errors.
+add_test(NAME e2e.region.same_pixels
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/region_check.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/region)
+set_tests_properties(e2e.region.same_pixels PROPERTIES LABELS e2e TIMEOUT 120)
+pvrt_expect_error(region_outside 2 "^pvrt: error: --end-col 100: pixel numbers run from 1 to 64 on this side$"
+  ARGS render ${PVRT_PAPER1} -W 64 -H 40 --end-col 100)
+pvrt_expect_error(region_empty 2 "^pvrt: error: the region's rows 30 to 20 hold no pixel \\(--start-row is after --end-row\\)$"
+  ARGS render ${PVRT_PAPER1} -W 64 -H 40 --start-row 30 --end-row 20)
+pvrt_expect_error(region_not_a_number 2 "^pvrt: error: --start-col 1/4: expected a pixel number"
+  ARGS render ${PVRT_PAPER1} -W 64 -H 40 --start-col 1/4)
+
+# --stats-json: every --stats figure as JSON, consistent with the text; written with the image or not at all.
+add_test(NAME e2e.stats_json
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/stats_json.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/stats-json)
+set_tests_properties(e2e.stats_json PROPERTIES LABELS e2e TIMEOUT 120)
+pvrt_expect_error(stats_json_directory 4 "^cannot write \".*/stats_json_directory\": it is a directory$" ABSENT out.png
+  ARGS render ${PVRT_PAPER1} -W 8 -H 8 -o <DIR>/out.png --stats-json <DIR>)
+
+# export-pov: the header's command line is the AA recipe that samples as pvrt does.
+add_test(NAME e2e.export_pov.recipe
+  COMMAND sh -c "$<TARGET_FILE:pvrt> export-pov ${PVRT_PAPER1} --aa-depth 3 -o ${PVRT_E2E_DIR}/recipe.pov && head -3 ${PVRT_E2E_DIR}/recipe.pov")
+set_tests_properties(e2e.export_pov.recipe PROPERTIES LABELS e2e
+  PASS_REGULAR_EXPRESSION "// Render as `pvrt render --sampler pov --spp 9` does: povray \\+Irecipe\\.pov \\+Orecipe\\.png \\+W1280 \\+H800 -D \\+FN \\+A0\\.0 \\+AM1 \\+R3 -J")

@@ -22,7 +22,8 @@ expect() {
 }
 has() { grep -q -- "$1" "$2" || fail "\"$1\" not in $2"; }
 lacks() { ! grep -q -- "$1" "$2" || fail "\"$1\" in $2"; }
-sha() { "$pvrt" export-pov "$1" -o - | sha256sum | cut -c1-64; }
+# The SDL's hash as the manifest records it: the export less its two-line recipe comment.
+sha() { "$pvrt" export-pov "$1" -o - | grep -v -e '^// Render as ' -e '^// (+A0.0 +AM1 +Rn -J' | sha256sum | cut -c1-64; }
 # Breaks prim_sphere the way a renderer regression would show: its picture changes while the
 # manifest still says the reference is of this scene (the hash is updated with it).
 break_sphere() {

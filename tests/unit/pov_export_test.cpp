@@ -20,6 +20,23 @@ TEST(PovExport, MinimalSceneHasHeaderExplicitCameraAndNothingElse) {
             "  right <1.33, 0, 0>\n  sky <0, 1, 0>\n}\n");
 }
 
+TEST(PovExport, HeaderCarriesTheAntialiasingRecipeAndResolution) {
+  const SceneDesc scene = loadSceneString(R"(<scene><image width="64" height="40"/></scene>)", "t.xml");
+  const std::string sdl = exportPov(scene).sdl;
+  const std::string file = withRecipe(sdl, scene, PovRecipe{3, "out/dir/t.pov"});
+  EXPECT_EQ(file.rfind("// Exported by pvrt from t.xml\n// Render with: +W64 +H40\n"
+                       "// Render as `pvrt render --sampler pov --spp 9` does: povray +It.pov +Ot.png +W64 +H40 -D +FN "
+                       "+A0.0 +AM1 +R3 -J\n// (+A0.0 +AM1 +Rn -J",
+                       0),
+            0u)
+      << file;
+  EXPECT_EQ(file.substr(file.find("#version")), sdl.substr(sdl.find("#version")));  // the SDL untouched
+  // Without <image>, pvrt's default resolution; without --aa-depth, -A.
+  const SceneDesc bare = loadSceneString("<scene/>", "t.xml");
+  EXPECT_NE(withRecipe(exportPov(bare).sdl, bare, {}).find("povray +Iscene.pov +Oscene.png +W320 +H240 -D +FN -A\n"),
+            std::string::npos);
+}
+
 TEST(PovExport, SphereWithMaterialAndTransformsKeepsTextureBeforeTransforms) {
   const std::string sdl = exportXml(R"(<scene>
     <sphere center="1 2 3" radius="0.5">

@@ -156,6 +156,7 @@ TEST(XmlSplit, EveryRepositorySceneLoadsTheSameInPieces) {
 TEST(XmlSplit, EveryBadFileGivesTheSameErrorInPieces) {
   int n = 0;
   for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/tests/e2e/bad")) {
+    if (!entry.is_regular_file()) continue;  // bad/include/: files included by others
     const std::string xml = fileText(entry.path());
     const std::string whole = outcome(xml, kWhole);
     for (size_t pieceBytes : {size_t(1), size_t(64)})
@@ -254,7 +255,7 @@ TEST(XmlSplit, TheScanInPartsCutsAsOneScan) {
   for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/scenes"))
     if (entry.path().extension() == ".xml") expectSameCutInParts(fileText(entry.path()), entry.path().string());
   for (const auto& entry : std::filesystem::directory_iterator(PVRT_SOURCE_DIR "/tests/e2e/bad"))
-    expectSameCutInParts(fileText(entry.path()), entry.path().string());
+    if (entry.is_regular_file()) expectSameCutInParts(fileText(entry.path()), entry.path().string());
   // Mutants of the generated scene: a few bytes of markup put in or taken out anywhere.
   std::mt19937 random(7);
   const char* inserts[] = {"<", ">", "\"", "'", "</sphere>", "<!--", "-->", "<box/>", "x", "<![CDATA[", "]]>", "/>"};
