@@ -16,6 +16,8 @@ command -v povray >/dev/null || { echo "update-references: povray not installed 
 
 # Scenes that also get a one-sample-per-pixel (-A) reference.
 noaa=" paper1 shapes lights "
+# Scenes that also get POV-Ray's adaptive antialiasing: +A0.3 with method 1 (a03) and 2 (am2).
+adaptive=" paper1 shapes lights fidelity_checker_rows "
 test_width=160
 
 # POV-Ray may only write below /tmp or the current directory (Debian's povray.conf).
@@ -53,10 +55,17 @@ for scene in "${scenes[@]}"; do
   sha=$(sha256sum "$work/$name.pov" | cut -c1-64)
   variants=(aa)
   [[ $noaa == *" $name "* ]] && variants+=(noaa)
+  [[ $adaptive == *" $name "* ]] && variants+=(a03 am2)
   for variant in "${variants[@]}"; do
-    if [ "$variant" = aa ]; then depth=3 aa="+A0.0 +AM1 +R3 -J" out=$name.png
-    else depth=0 aa="-A" out=$name.noaa.png; fi
-    cmd="povray +I$name.pov +O$out +W$width +H$height -D +FN $aa"
+    # pvrt's options for the variant; pvrt prints the POV-Ray command that matches them.
+    case $variant in
+      aa) depth=3 opts=(--spp 9) out=$name.png ;;
+      noaa) depth=0 opts=(--spp 1) out=$name.noaa.png ;;
+      a03) depth=3 opts=(--spp 9 --aa-threshold 0.3 --aa-method 1) out=$name.a03.png ;;
+      am2) depth=3 opts=(--spp 9 --aa-threshold 0.3 --aa-method 2) out=$name.am2.png ;;
+    esac
+    cmd=$("$pvrt" export-pov --strict "$scene" -o "$work/$name.pov" --povray-command -W "$width" -H "$height" "${opts[@]}")
+    cmd=${cmd/+O$name.png/+O$out}
     (cd "$work" && $cmd >"$work/$name.log" 2>&1) || { cat "$work/$name.log" >&2; exit 1; }
     cp "$work/$out" "$root/reference/$out"
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$variant" "$width" "$height" "$depth" "$sha" "$version" "$cmd" \

@@ -77,7 +77,9 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   const int workers = settings.backend == Backend::Serial
                           ? 1
                           : (settings.threads > 0 ? settings.threads : threadBudget());
-  const WorkPlan plan = makeWorkPlan(settings.schedule, settings.width, settings.height, workers);
+  ScheduleSettings cut = settings.schedule;
+  cut.granule = sampler.blockGranule();  // adaptive antialiasing renders whole POV-Ray blocks
+  const WorkPlan plan = makeWorkPlan(cut, settings.width, settings.height, workers);
   result.workers.assign(size_t(workers), WorkerStats{});
 
   std::atomic<long> done{0};

@@ -37,11 +37,19 @@ render)
   scene=$4 variant=$5 backend=$6
   width=$(field "$scene" "$variant" 3) height=$(field "$scene" "$variant" 4) depth=$(field "$scene" "$variant" 5)
   ref=$root/reference/$scene.png
-  [ "$variant" = noaa ] && ref=$root/reference/$scene.noaa.png
+  [ "$variant" != aa ] && ref=$root/reference/$scene.$variant.png
   spp=$((depth > 0 ? depth * depth : 1))
-  # Per-scene thresholds, only with a written reason (reference/tolerances.tsv).
+  # POV-Ray's adaptive antialiasing, read from the reference's own command line.
+  cmd=$(field "$scene" "$variant" 8)
+  aa=()
+  [[ $cmd =~ \ \+A([0-9.]+)\  ]] && aa+=(--aa-threshold "${BASH_REMATCH[1]}")
+  [[ $cmd =~ \ \+AM([0-9])\  ]] && aa+=(--aa-method "${BASH_REMATCH[1]}")
+  [[ $cmd =~ \ \+BS([0-9]+) ]] && aa+=(--aa-block "${BASH_REMATCH[1]}")
+  # Per-scene thresholds, only with a written reason (reference/tolerances.tsv); a line for
+  # SCENE.VARIANT holds for that variant alone and comes before one for SCENE.
   levels=2 fraction=0
-  line=$(awk -F'\t' -v s="$scene" 'NR > 1 && $1 == s { print $2 "\t" $3; exit }' "$root/reference/tolerances.tsv")
+  line=$(awk -F'\t' -v s="$scene" -v sv="$scene.$variant" 'NR > 1 && $1 == sv { print $2 "\t" $3; found = 1; exit }
+    NR > 1 && $1 == s && !any { any = $2 "\t" $3 } END { if (!found && any) print any }' "$root/reference/tolerances.tsv")
   [ -n "$line" ] && IFS=$'\t' read -r levels fraction <<<"$line"
   out=$build/golden-out/$scene.$variant.$backend.png
   mkdir -p "$build/golden-out"
@@ -51,7 +59,7 @@ render)
     mpi) run=(mpirun --allow-run-as-root --oversubscribe --bind-to none -np 3 "$pvrt" render --backend mpi --threads 1) ;;
     *) echo "unknown backend $backend"; exit 2 ;;
   esac
-  "${run[@]}" "$root/scenes/$scene.xml" -o "$out" -W "$width" -H "$height" --spp "$spp" --sampler pov --quiet || exit 1
+  "${run[@]}" "$root/scenes/$scene.xml" -o "$out" -W "$width" -H "$height" --spp "$spp" --sampler pov "${aa[@]}" --quiet || exit 1
   stats=$("$pvrt" compare "$out" "$ref" --max-levels "$levels" --max-fraction-over-1 "$fraction")
   rc=$?
   echo "$stats"
