@@ -23,6 +23,8 @@
 #include <cmath>
 #include <vector>
 
+#include "render/sample_offset.h"
+
 namespace pvrt {
 
 struct AdaptiveSettings {
@@ -47,8 +49,10 @@ class ColourTest {
     return {std::pow(std::max(c.r, 0.0f), kEncode), std::pow(std::max(c.g, 0.0f), kEncode),
             std::pow(std::max(c.b, 0.0f), kEncode)};
   }
-  bool differ(FloatRgb a, FloatRgb b) const {
-    const FloatRgb x = encode(a), y = encode(b);
+  bool differ(FloatRgb a, FloatRgb b) const { return differEncoded(encode(a), encode(b)); }
+  // The same test on colours already through encode(): POV-Ray encodes a colour again
+  // for every comparison, pvrt once per sample (the same bits, a sixth of the powf calls).
+  bool differEncoded(FloatRgb x, FloatRgb y) const {
     const float d = std::fabs(x.r - y.r) + std::fabs(x.g - y.g) + std::fabs(x.b - y.b);
     return d >= threshold_;
   }
@@ -57,43 +61,48 @@ class ColourTest {
   float threshold_;
 };
 
-// One POV-Ray block [x0,x1) x [y0,y1) by method 1. `source` gives
-//   FloatRgb centre(int x, int y)                      the centre ray of any pixel,
-//                                                      also outside the image
-//   FloatRgb supersample(int x, int y, FloatRgb first)  (first + n x n grid) / (n*n + 1)
-//   void put(int x, int y, FloatRgb c)                  a finished pixel of the block
+// What the block algorithms ask of their `source` (the renderer's tracer, or a test's picture):
+//   void row(int x, int y, int count, double dx, double dy, FloatRgb* out)
+//       rays at (x + i + dx, y + dy) for i < count, pixels outside the image included;
+//       a row at a time, so that they can be traced as a packet
+//   void several(int x, int y, const SubSample* offsets, int count, FloatRgb* out)
+//       rays of pixel (x, y) at these offsets from its centre
+//   FloatRgb supersample(int x, int y, FloatRgb first)   (first + n x n grid) / (n*n + 1)
+//   void put(int x, int y, FloatRgb c)                    a finished pixel of the block
+// Rays are asked for earlier than POV-Ray traces them (a row of centres before the row's
+// decisions, say); nothing but the order of the tracer's shadow cache can tell.
+
+// One POV-Ray block [x0,x1) x [y0,y1) by method 1.
 template <class Source>
 void antialiasBlockMethod1(int x0, int y0, int x1, int y1, const ColourTest& test, Source& source) {
   // The block and a frame of one pixel above and left: cell (x, y) at [(y-y0+1)*w + x-x0+1].
   const int w = x1 - x0 + 1;
-  std::vector<FloatRgb> colour(size_t(w) * (y1 - y0 + 1));
+  std::vector<FloatRgb> colour(size_t(w) * (y1 - y0 + 1)), encoded(colour.size());
   std::vector<char> done(colour.size(), 0);
   auto at = [&](int x, int y) { return size_t(y - y0 + 1) * w + size_t(x - x0 + 1); };
+  auto supersample = [&](int x, int y, size_t i) {
+    colour[i] = source.supersample(x, y, colour[i]);
+    encoded[i] = ColourTest::encode(colour[i]);
+    done[i] = 1;
+  };
+  source.row(x0, y0 - 1, x1 - x0, 0.0, 0.0, &colour[at(x0, y0 - 1)]);
   for (int x = x0; x < x1; ++x) {
-    colour[at(x, y0 - 1)] = source.centre(x, y0 - 1);
-    done[at(x, y0 - 1)] = 1;  // belongs to the block above: never supersampled here
+    encoded[at(x, y0 - 1)] = ColourTest::encode(colour[at(x, y0 - 1)]);
+    done[at(x, y0 - 1)] = 1;  // the block above's: never supersampled here
   }
   for (int y = y0; y < y1; ++y) {
-    colour[at(x0 - 1, y)] = source.centre(x0 - 1, y);
+    // The centre rays of the column left of the block (done, like the row above) and of the row.
+    source.row(x0 - 1, y, x1 - x0 + 1, 0.0, 0.0, &colour[at(x0 - 1, y)]);
+    for (int x = x0 - 1; x < x1; ++x) encoded[at(x, y)] = ColourTest::encode(colour[at(x, y)]);
     done[at(x0 - 1, y)] = 1;
     for (int x = x0; x < x1; ++x) {
       const size_t cur = at(x, y), left = at(x - 1, y), top = at(x, y - 1);
-      colour[cur] = source.centre(x, y);
-      const bool leftDiff = test.differ(colour[left], colour[cur]);
-      const bool topDiff = test.differ(colour[top], colour[cur]);
+      const bool leftDiff = test.differEncoded(encoded[left], encoded[cur]);
+      const bool topDiff = test.differEncoded(encoded[top], encoded[cur]);
       // POV-Ray's order: the left neighbour, the top one, then the pixel itself.
-      if (leftDiff && !done[left]) {
-        colour[left] = source.supersample(x - 1, y, colour[left]);
-        done[left] = 1;
-      }
-      if (topDiff && !done[top]) {
-        colour[top] = source.supersample(x, y - 1, colour[top]);
-        done[top] = 1;
-      }
-      if (leftDiff || topDiff) {
-        colour[cur] = source.supersample(x, y, colour[cur]);
-        done[cur] = 1;
-      }
+      if (leftDiff && !done[left]) supersample(x - 1, y, left);
+      if (topDiff && !done[top]) supersample(x, y - 1, top);
+      if (leftDiff || topDiff) supersample(x, y, cur);
     }
   }
   for (int y = y0; y < y1; ++y)
@@ -109,12 +118,13 @@ inline FloatRgb quarter(FloatRgb a) { return {float(a.r / 4.0), float(a.g / 4.0)
 // The samples of one pixel on a (2^n + 1)^2 lattice, corners at its ends.
 struct Lattice {
   size_t size;
-  std::vector<FloatRgb> colour;
+  std::vector<FloatRgb> colour, encoded;  // encoded: through ColourTest::encode
   std::vector<char> sampled;
-  explicit Lattice(size_t s) : size(s), colour(s * s), sampled(s * s, 0) {}
-  void set(size_t x, size_t y, FloatRgb c) {
-    colour[x + y * size] = c;
-    sampled[x + y * size] = 1;
+  explicit Lattice(size_t s) : size(s), colour(s * s), encoded(s * s), sampled(s * s, 0) {}
+  void set(size_t i, FloatRgb c, FloatRgb e) {
+    colour[i] = c;
+    encoded[i] = e;
+    sampled[i] = 1;
   }
 };
 
@@ -123,13 +133,16 @@ struct Lattice {
 template <class Source>
 FloatRgb subdivide(int px, int py, double cx, double cy, double d, size_t bx, size_t by, size_t step,
                    Lattice& lat, int level, const ColourTest& test, Source& source) {
-  const FloatRgb c00 = lat.colour[bx + by * lat.size], c02 = lat.colour[bx + (by + step) * lat.size];
-  const FloatRgb c20 = lat.colour[bx + step + by * lat.size], c22 = lat.colour[bx + step + (by + step) * lat.size];
-  const bool split = level > 0 && (test.differ(c00, c02) || test.differ(c00, c20) || test.differ(c00, c22) ||
-                                   test.differ(c02, c20) || test.differ(c02, c22) || test.differ(c20, c22));
+  const size_t i00 = bx + by * lat.size, i02 = bx + (by + step) * lat.size;
+  const size_t i20 = bx + step + by * lat.size, i22 = bx + step + (by + step) * lat.size;
+  const FloatRgb c00 = lat.colour[i00], c02 = lat.colour[i02], c20 = lat.colour[i20], c22 = lat.colour[i22];
+  auto differ = [&](size_t a, size_t b) { return test.differEncoded(lat.encoded[a], lat.encoded[b]); };
+  const bool split = level > 0 && (differ(i00, i02) || differ(i00, i20) || differ(i00, i22) || differ(i02, i20) ||
+                                   differ(i02, i22) || differ(i20, i22));
   if (!split) return quarter(c00 + c02 + c20 + c22);
   const size_t h = step / 2;
-  // Left, top, right and bottom edge midpoints, then the centre, as POV-Ray traces them.
+  // Left, top, right and bottom edge midpoints, then the centre, as POV-Ray traces them;
+  // those a neighbouring cell has not traced yet go together.
   const struct {
     size_t x, y;
     double dx, dy;
@@ -138,8 +151,17 @@ FloatRgb subdivide(int px, int py, double cx, double cy, double d, size_t bx, si
                {bx + step, by + h, cx + d, cy},
                {bx + h, by + step, cx, cy + d},
                {bx + h, by + h, cx, cy}};
+  SubSample offsets[5];
+  size_t where[5];
+  int n = 0;
   for (const auto& m : mids)
-    if (!lat.sampled[m.x + m.y * lat.size]) lat.set(m.x, m.y, source.sample(px, py, m.dx, m.dy));
+    if (!lat.sampled[m.x + m.y * lat.size]) {
+      offsets[n] = {m.dx, m.dy};
+      where[n++] = m.x + m.y * lat.size;
+    }
+  FloatRgb traced[5];
+  if (n > 0) source.several(px, py, offsets, n, traced);
+  for (int k = 0; k < n; ++k) lat.set(where[k], traced[k], ColourTest::encode(traced[k]));
   const double d2 = d * 0.5;
   const FloatRgb q00 = subdivide(px, py, cx - d2, cy - d2, d2, bx, by, h, lat, level - 1, test, source);
   const FloatRgb q01 = subdivide(px, py, cx - d2, cy + d2, d2, bx, by + h, h, lat, level - 1, test, source);
@@ -150,27 +172,25 @@ FloatRgb subdivide(int px, int py, double cx, double cy, double d, size_t bx, si
 
 }  // namespace adaptive_detail
 
-// One POV-Ray block [x0,x1) x [y0,y1) by method 2 with POV-Ray's +R depth. `source` gives
-//   FloatRgb sample(int x, int y, double dx, double dy)  one ray, offsets from the centre
-//   void put(int x, int y, FloatRgb c)
+// One POV-Ray block [x0,x1) x [y0,y1) by method 2 with POV-Ray's +R depth.
 template <class Source>
 void antialiasBlockMethod2(int x0, int y0, int x1, int y1, int depth, const ColourTest& test, Source& source) {
   using namespace adaptive_detail;
   // Upper-left corners of the block's pixels and of the row and column after it.
   const int w = x1 - x0 + 1;
-  std::vector<FloatRgb> corner(size_t(w) * (y1 - y0 + 1));
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) corner[size_t(y - y0) * w + (x - x0)] = source.sample(x, y, -0.5, -0.5);
+  std::vector<FloatRgb> corner(size_t(w) * (y1 - y0 + 1)), encoded(corner.size());
+  for (int y = y0; y <= y1; ++y) source.row(x0, y, w, -0.5, -0.5, &corner[size_t(y - y0) * w]);
+  for (size_t i = 0; i < corner.size(); ++i) encoded[i] = ColourTest::encode(corner[i]);
   const size_t sub = size_t(1) << depth;
   Lattice lat(sub + 1);
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       std::fill(lat.sampled.begin(), lat.sampled.end(), 0);
       const size_t c = size_t(y - y0) * w + (x - x0);
-      lat.set(0, 0, corner[c]);
-      lat.set(0, sub, corner[c + w]);
-      lat.set(sub, 0, corner[c + 1]);
-      lat.set(sub, sub, corner[c + w + 1]);
+      lat.set(0, corner[c], encoded[c]);
+      lat.set(sub * lat.size, corner[c + w], encoded[c + w]);
+      lat.set(sub, corner[c + 1], encoded[c + 1]);
+      lat.set(sub + sub * lat.size, corner[c + w + 1], encoded[c + w + 1]);
       source.put(x, y, subdivide(x, y, 0.0, 0.0, 0.5, 0, 0, sub, lat, depth - 1, test, source));
     }
 }

@@ -25,20 +25,26 @@ class AdaptiveSource {
       : scene_(scene), image_(image), stats_(stats), tracer_(scene, stats) {
     sampler.offsets(0, 0, grid_);  // the pov sampler's: the centre, then the n x n grid
     grid_.erase(grid_.begin());
-    rays_.resize(grid_.size());
-    colors_.resize(grid_.size());
+    rays_.resize(std::max<size_t>(grid_.size(), size_t(kMaxPacket)));
+    colors_.resize(rays_.size());
   }
-
-  FloatRgb centre(int x, int y) { return sample(x, y, 0.0, 0.0); }
 
   void beginBlock() { tracer_.beginPixel(); }
 
-  FloatRgb sample(int x, int y, double dx, double dy) {
-    ++stats_.primaryRays;
-    Color c = tracer_.trace(scene_.camera.ray(x, y, dx, dy, image_.width(), image_.height()), 0, 1.0,
-                            scene_.cameraInteriors);
-    finiteSamples(&c, 1, stats_);
-    return {float(c.r), float(c.g), float(c.b)};
+  void row(int x, int y, int count, double dx, double dy, FloatRgb* out) {
+    for (int at = 0; at < count; at += kMaxPacket) {
+      const int n = std::min(kMaxPacket, count - at);
+      for (int k = 0; k < n; ++k)
+        rays_[size_t(k)] = scene_.camera.ray(x + at + k, y, dx, dy, image_.width(), image_.height());
+      traceRays(n);
+      for (int k = 0; k < n; ++k) out[at + k] = single(colors_[size_t(k)]);
+    }
+  }
+
+  void several(int x, int y, const SubSample* offsets, int count, FloatRgb* out) {
+    scene_.camera.rays(x, y, offsets, count, image_.width(), image_.height(), rays_.data());
+    traceRays(count);
+    for (int k = 0; k < count; ++k) out[k] = single(colors_[size_t(k)]);
   }
 
   // POV-Ray's SupersampleOnePixel: the grid's colours added to the centre's in float, in
@@ -46,21 +52,11 @@ class AdaptiveSource {
   FloatRgb supersample(int x, int y, FloatRgb first) {
     const int n = int(grid_.size());
     scene_.camera.rays(x, y, grid_.data(), n, image_.width(), image_.height(), rays_.data());
-    stats_.primaryRays += uint64_t(n);
-    if (size_t(n) < kMinPacket) {
-      for (int k = 0; k < n; ++k) colors_[size_t(k)] = tracer_.trace(rays_[size_t(k)], 0, 1.0, scene_.cameraInteriors);
-    } else {
-      for (int at = 0; at < n; at += kMaxPacket) {
-        const int count = std::min(kMaxPacket, n - at);
-        tracer_.tracePacket(rays_.data() + at, count, scene_.cameraInteriors, colors_.data() + at);
-      }
-    }
-    finiteSamples(colors_.data(), size_t(n), stats_);
+    traceRays(n);
     PixelSum sum;
     sum.add({first.r, first.g, first.b});
     for (int k = 0; k < n; ++k) sum.add(colors_[size_t(k)]);
-    const Color m = sum.mean(size_t(n) + 1);
-    return {float(m.r), float(m.g), float(m.b)};
+    return single(sum.mean(size_t(n) + 1));
   }
 
   void put(int x, int y, FloatRgb c) {
@@ -69,6 +65,21 @@ class AdaptiveSource {
   }
 
  private:
+  static FloatRgb single(const Color& c) { return {float(c.r), float(c.g), float(c.b)}; }
+  // rays_[0, n) into colors_: as packets (camera rays share their origin), or one by one
+  // when too few; a sample that is not finite counts as black (render/pixel_value.h).
+  void traceRays(int n) {
+    stats_.primaryRays += uint64_t(n);
+    if (size_t(n) < kMinPacket) {
+      for (int k = 0; k < n; ++k) colors_[size_t(k)] = tracer_.trace(rays_[size_t(k)], 0, 1.0, scene_.cameraInteriors);
+    } else {
+      for (int at = 0; at < n; at += kMaxPacket)
+        tracer_.tracePacket(rays_.data() + at, std::min(kMaxPacket, n - at), scene_.cameraInteriors,
+                            colors_.data() + at);
+    }
+    finiteSamples(colors_.data(), size_t(n), stats_);
+  }
+
   const Scene& scene_;
   Image& image_;
   RenderStats& stats_;

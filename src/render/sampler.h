@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "render/adaptive.h"
+#include "render/sample_offset.h"
 
 namespace pvrt {
 
@@ -30,10 +31,6 @@ struct SamplerSettings {
   // POV-Ray's antialiasing threshold and method (pov only). Threshold 0 with method 1 is
   // the plain pov sampler (every pixel supersampled); c = 1 is -A whatever they say.
   AdaptiveSettings adaptive = {};
-};
-
-struct SubSample {
-  double dx, dy;  // offset from the pixel centre, in pixels (dy downward)
 };
 
 class PixelSampler {

@@ -24,7 +24,12 @@ struct FakeSource {
     ++rays;
     return {picture(x + dx, y + dy), 0, 0};
   }
-  FloatRgb centre(int x, int y) { return sample(x, y, 0, 0); }
+  void row(int x, int y, int count, double dx, double dy, FloatRgb* out) {
+    for (int i = 0; i < count; ++i) out[i] = sample(x + i, y, dx, dy);
+  }
+  void several(int x, int y, const SubSample* offsets, int count, FloatRgb* out) {
+    for (int k = 0; k < count; ++k) out[k] = sample(x, y, offsets[k].dx, offsets[k].dy);
+  }
   // The centre plus a 3 x 3 grid at -1/3, 0, 1/3, as POV-Ray's +R3.
   FloatRgb supersample(int x, int y, FloatRgb first) {
     ++supersampled[{x, y}];
