@@ -221,9 +221,16 @@ std::string withRecipe(const std::string& sdl, const SceneDesc& scene, const Pov
   return sdl.substr(0, at) + recipe + sdl.substr(at);
 }
 
-std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth) {
-  std::string aa = aaDepth > 0 ? fmt::format("+A0.0 +AM1 +R{} -J", aaDepth) : "-A";
-  return fmt::format("povray +I{} +O{} +W{} +H{} -D +FN {}", pov, png, width, height, aa);
+std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth,
+                           const AdaptiveSettings& aa) {
+  std::string options = "-A";
+  if (aaDepth > 0) {
+    // POV-Ray reads the threshold as a float: the shortest text that reads back as it.
+    const std::string t = aa.threshold == 0 ? "0.0" : fmt::format("{}", float(aa.threshold));
+    options = fmt::format("+A{} +AM{} +R{} -J", t, aa.method, aaDepth);
+    if (aa.blockSize != 32) options += fmt::format(" +BS{}", aa.blockSize);
+  }
+  return fmt::format("povray +I{} +O{} +W{} +H{} -D +FN {}", pov, png, width, height, options);
 }
 
 }  // namespace pvrt

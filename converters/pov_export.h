@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/adaptive.h"
 #include "scene/scene_desc.h"
 
 namespace pvrt {
@@ -33,7 +34,10 @@ struct PovRecipe {
 std::string withRecipe(const std::string& sdl, const SceneDesc& scene, const PovRecipe& recipe);
 
 // The POV-Ray command line that renders an export the way pvrt's `pov` sampler does
-// (`+A0.0 +AM1 +Rn -J`, or `-A` for one sample per pixel).
-std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth);
+// (`+A0.0 +AM1 +Rn -J`, or `-A` for one sample per pixel); with `aa`, POV-Ray's adaptive
+// antialiasing as `--aa-threshold`, `--aa-method` and `--aa-block` ask for it
+// (`+A0.3 +AM2 +R3 -J`, and `+BSb` when the block is not POV-Ray's default 32).
+std::string povCommandLine(const std::string& pov, const std::string& png, int width, int height, int aaDepth,
+                           const AdaptiveSettings& aa = {});
 
 }  // namespace pvrt

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "core/ray.h"
@@ -15,6 +16,8 @@
 namespace pvrt {
 
 inline constexpr int kMaxPacket = 64;
+// Below this many rays per pixel a packet saves too little to pay for itself.
+inline constexpr size_t kMinPacket = 4;
 
 // Every point the packet can reach is apex + s * v for one of its vectors v and some
 // s in [sLo, sHi]. Built from the vectors; tests boxes conservatively.

@@ -32,7 +32,10 @@ struct AccuracyOptions {
   std::string scene, csv, plot, golden;
   int width = 0, height = 0, threads = 0;
   std::vector<int> sppList{1, 4, 16, 64, 256};
-  std::vector<std::string> samplers{"pov", "grid", "jitter"};
+  // Sample patterns: the samplers, and POV-Ray's adaptive antialiasing (the pov sampler with
+  // --aa-threshold, method 1 or 2).
+  std::vector<std::string> samplers{"pov", "grid", "jitter", "adaptive1", "adaptive2"};
+  double aaThreshold = 0.3;
   int maxDepth = -1;  // -1: the scene's max_trace_level; 0: no depth sweep
   int depthSpp = 16;
   std::string depthSampler = "pov";
@@ -43,6 +46,26 @@ struct AccuracyOptions {
   std::string qualitySampler = "pov";
   uint64_t seed = 0;
 };
+
+// A pattern's settings at c samples per pixel: "adaptive1" and "adaptive2" are the pov
+// sampler with POV-Ray's +A threshold and method 1 or 2.
+SamplerSettings patternSettings(const std::string& name, int spp, uint64_t seed, double threshold) {
+  SamplerSettings s;
+  s.samplesPerPixel = spp;
+  s.seed = seed;
+  if (name == "adaptive1" || name == "adaptive2") {
+    s.kind = SamplerKind::Pov;
+    s.adaptive.threshold = threshold;
+    s.adaptive.method = name == "adaptive1" ? 1 : 2;
+  } else {
+    s.kind = parseSamplerKind(name);  // throws on an unknown name
+  }
+  return s;
+}
+std::string patternName(const SamplerSettings& s) {
+  if (s.adaptive.threshold > 0 || s.adaptive.method == 2) return "adaptive" + std::to_string(s.adaptive.method);
+  return samplerName(s.kind);
+}
 
 struct Row {
   std::string mode;  // samples, depth or quality
@@ -71,10 +94,14 @@ Row measure(const Setup& su, const std::string& mode, SamplerSettings sampler, i
   s.sampler = sampler;
   if (threads > 0) s.threads = threads;
   const RenderResult r = render(scene, s);
-  Row row{mode, sampler, depth, int(r.workers.size()), PixelSampler(sampler).count(), r.seconds, r.totals, {}, {}};
+  // Adaptive patterns trace as many rays as their decisions ask for: the mean is shown.
+  const PixelSampler ps(sampler);
+  const int raysPerPixel = ps.adaptive() ? int(std::lround(double(r.totals.primaryRays) / (double(s.width) * s.height)))
+                                         : ps.count();
+  Row row{mode, sampler, depth, int(r.workers.size()), raysPerPixel, r.seconds, r.totals, {}, {}};
   const std::vector<uint8_t> img = encodeSrgb8(r.image);
   row.error = imageError8(img, encodeSrgb8(su.reference));
-  if (su.golden && sampler.kind == SamplerKind::Pov) row.golden = imageError8(img, *su.golden);
+  if (su.golden && patternName(sampler) == "pov") row.golden = imageError8(img, *su.golden);
   return row;
 }
 
@@ -83,15 +110,15 @@ std::string num(double v, const char* fmtSpec = "{:.4g}") {
 }
 
 void printHeader(bool golden) {
-  fmt::print("{:<8} {:<7} {:>6} {:>5} {:>7} {:>7} {:>10} {:>12} {:>8} {:>8} {:>9}", "mode", "sampler", "c", "depth",
+  fmt::print("{:<8} {:<9} {:>6} {:>5} {:>7} {:>7} {:>10} {:>12} {:>8} {:>8} {:>9}", "mode", "sampler", "c", "depth",
              "threads", "rays/px", "time s", "rays", "RMSE", "PSNR dB", ">1 lvl %");
   if (golden) fmt::print(" {:>10} {:>10} {:>10}", "POV RMSE", "POV PSNR", "POV >1 %");
   fmt::print("\n");
 }
 
 void printRow(const Row& r) {
-  fmt::print("{:<8} {:<7} {:>6} {:>5} {:>7} {:>7} {:>10.4f} {:>12} {:>8.3f} {:>8} {:>9.3f}", r.mode,
-             samplerName(r.sampler.kind), r.sampler.samplesPerPixel, r.depth, r.threads, r.raysPerPixel, r.seconds,
+  fmt::print("{:<8} {:<9} {:>6} {:>5} {:>7} {:>7} {:>10.4f} {:>12} {:>8.3f} {:>8} {:>9.3f}", r.mode,
+             patternName(r.sampler), r.sampler.samplesPerPixel, r.depth, r.threads, r.raysPerPixel, r.seconds,
              r.rays.totalRays(), r.error.rmse, num(r.error.psnr, "{:.2f}"), 100 * r.error.shareOver1);
   if (r.golden)
     fmt::print(" {:>10.3f} {:>10} {:>10.3f}", r.golden->rmse, num(r.golden->psnr, "{:.2f}"),
@@ -106,7 +133,7 @@ std::string csvText(const std::vector<Row>& rows) {
       "refracted_rays,transmitted_rays,total_rays,rmse,psnr,share_over1,golden_rmse,golden_psnr,golden_share_over1\n";
   for (const Row& r : rows) {
     out += fmt::format("{},{},{},{},{},{},{:.6f},{},{},{},{},{},{},{:.6f},{},{:.6f}", r.mode,
-                       samplerName(r.sampler.kind), r.sampler.samplesPerPixel, r.depth, r.threads, r.raysPerPixel,
+                       patternName(r.sampler), r.sampler.samplesPerPixel, r.depth, r.threads, r.raysPerPixel,
                        r.seconds, r.rays.primaryRays, r.rays.shadowRays, r.rays.reflectedRays, r.rays.refractedRays,
                        r.rays.transmittedRays, r.rays.totalRays(), r.error.rmse, num(r.error.psnr, "{:.6f}"),
                        r.error.shareOver1);
@@ -119,25 +146,29 @@ std::string csvText(const std::vector<Row>& rows) {
 }
 
 // The equal-time and equal-error readings of the sample-pattern curves (RMSE over time).
-void printReadings(const std::vector<Row>& rows, const std::vector<SamplerKind>& kinds) {
+void printReadings(const std::vector<Row>& rows, const std::vector<std::string>& patterns) {
   std::vector<std::vector<CurvePoint>> curves;
-  for (SamplerKind k : kinds) {
+  std::vector<std::string> names;
+  for (const std::string& p : patterns) {
     std::vector<CurvePoint> c;
     for (const Row& r : rows)
-      if (r.mode == "samples" && r.sampler.kind == k) c.push_back({r.seconds, r.error.rmse});
-    if (!c.empty()) curves.push_back(c);
+      if (r.mode == "samples" && patternName(r.sampler) == p) c.push_back({r.seconds, r.error.rmse});
+    if (!c.empty()) {
+      curves.push_back(c);
+      names.push_back(p);
+    }
   }
   if (curves.size() < 2) return;
   const double t = commonTime(curves), e = commonError(curves);
   fmt::print("\nEqual time ({:.4f} s): RMSE", t);
   for (size_t i = 0; i < curves.size(); ++i) {
     const auto v = errorAtTime(curves[i], t);
-    fmt::print("  {} {}", samplerName(kinds[i]), v ? fmt::format("{:.3f}", *v) : "n/a");
+    fmt::print("  {} {}", names[i], v ? fmt::format("{:.3f}", *v) : "n/a");
   }
   fmt::print("\nEqual error (RMSE {:.3f}): time", e);
   for (size_t i = 0; i < curves.size(); ++i) {
     const auto v = timeAtError(curves[i], e);
-    fmt::print("  {} {}", samplerName(kinds[i]), v ? fmt::format("{:.4f} s", *v) : "n/a");
+    fmt::print("  {} {}", names[i], v ? fmt::format("{:.4f} s", *v) : "n/a");
   }
   fmt::print("\n");
 }
@@ -175,9 +206,19 @@ int runAccuracy(const AccuracyOptions& o) {
     PixelSampler check(s);  // perfect squares only
     return s;
   };
-  std::vector<SamplerKind> kinds;
-  for (const std::string& k : o.samplers) kinds.push_back(parseSamplerKind(k));
-  for (int c : o.sppList) sampler("pov", c);
+  auto pattern = [&](const std::string& name, int spp) {
+    if (name != "pov" && name != "grid" && name != "jitter" && name != "adaptive1" && name != "adaptive2")
+      throw Error(ExitCode::Usage,
+                  "unknown sample pattern \"" + name + "\" (use pov, grid, jitter, adaptive1 or adaptive2)");
+    SamplerSettings s = patternSettings(name, spp, o.seed, o.aaThreshold);
+    PixelSampler check(s);
+    return s;
+  };
+  // POV-Ray's method 2 goes at most +R9 deep: adaptive2 rows stop at c = 81.
+  auto tried = [](const std::string& name, int c) { return name != "adaptive2" || c <= 81; };
+  for (const std::string& k : o.samplers)
+    for (int c : o.sppList)
+      if (tried(k, c)) pattern(k, c);
   const SamplerSettings refSampler = sampler(o.referenceSampler, o.referenceSpp);
   const SamplerSettings depthSampler = sampler(o.depthSampler, o.depthSpp);
   sampler(o.qualitySampler, 1);
@@ -237,11 +278,12 @@ int runAccuracy(const AccuracyOptions& o) {
       add(measure(su, "quality", sampler(o.qualitySampler, c), su.sceneDepth, p));
     }
   } else {
-    for (size_t i = 0; i < kinds.size(); ++i)
-      for (int c : o.sppList) add(measure(su, "samples", sampler(o.samplers[i], c), su.sceneDepth, 0));
+    for (const std::string& k : o.samplers)
+      for (int c : o.sppList)
+        if (tried(k, c)) add(measure(su, "samples", pattern(k, c), su.sceneDepth, 0));
     const int maxDepth = o.maxDepth >= 0 ? o.maxDepth : su.sceneDepth;
     for (int d = 1; d <= maxDepth; ++d) add(measure(su, "depth", depthSampler, d, 0));
-    printReadings(rows, kinds);
+    printReadings(rows, o.samplers);
   }
 
   const std::string csv = csvText(rows);
@@ -277,8 +319,12 @@ Command addAccuracyCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
-  c->add_option("--samplers", o->samplers, "Sample patterns to try: pov, grid, jitter")
+  c->add_option("--samplers", o->samplers,
+                "Sample patterns to try: pov, grid, jitter, adaptive1, adaptive2 (POV-Ray's +AM1 and +AM2 with "
+                "--aa-threshold; adaptive2 up to c = 81, POV-Ray's +R9)")
       ->delimiter(',')
+      ->capture_default_str();
+  c->add_option("--aa-threshold", o->aaThreshold, "POV-Ray's +A threshold of the adaptive patterns")
       ->capture_default_str();
   c->add_option("--max-depth", o->maxDepth,
                 "Trace depths 1..N (max_trace_level) to try; default the scene's max_trace_level, 0: none")

@@ -78,6 +78,7 @@ struct RenderOptions {
   double mpiTimeout = 30;  // seconds a rank of the node may be stopped before the job ends
   int width = 0, height = 0, spp = 1, aaDepth = 0, threads = 0, chunk = 0, tileSize = 32;
   uint64_t seed = 0;
+  AdaptiveSettings adaptive;  // --aa-threshold, --aa-method, --aa-block
   bool stats = false, quiet = false;
   bool hasTimeBudget = false;
   double timeBudget = 0;  // seconds, when hasTimeBudget
@@ -107,8 +108,15 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   const RenderStats& t = r.totals;
   auto line = [](const char* what, uint64_t n) { fmt::print("  {:<22}{:>16}\n", what, n); };
   fmt::print("Render statistics\n");
-  fmt::print("  Image                 {} x {}, {} rays/pixel ({} sampler, spp {})\n", s.width, s.height,
-             PixelSampler(s.sampler).count(), samplerName(s.sampler.kind), s.sampler.samplesPerPixel);
+  const PixelSampler sampler(s.sampler);
+  if (sampler.adaptive()) {
+    const AdaptiveSettings& a = sampler.adaptiveSettings();
+    fmt::print("  Image                 {} x {}, POV-Ray's +A{} +AM{} +R{} +BS{} -J (pov sampler, spp {})\n",
+               s.width, s.height, a.threshold, a.method, sampler.depth(), a.blockSize, s.sampler.samplesPerPixel);
+  } else {
+    fmt::print("  Image                 {} x {}, {} rays/pixel ({} sampler, spp {})\n", s.width, s.height,
+               sampler.count(), samplerName(s.sampler.kind), s.sampler.samplesPerPixel);
+  }
   if (s.region)
     fmt::print("  Region                columns {}-{}, rows {}-{} ({} x {})\n", s.region->x0 + 1, s.region->x1,
                s.region->y0 + 1, s.region->y1, s.region->x1 - s.region->x0, s.region->y1 - s.region->y0);
@@ -285,7 +293,16 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   s.sampler.kind = parseSamplerKind(o.samplerName);
   s.sampler.samplesPerPixel = o.aaDepth > 0 ? o.aaDepth * o.aaDepth : o.spp;
   s.sampler.seed = o.seed;
-  PixelSampler check(s.sampler);  // validates spp before any work
+  s.sampler.adaptive = o.adaptive;
+  PixelSampler check(s.sampler);  // validates spp and the antialiasing before any work
+  if (check.adaptive() && !o.loadMap.empty())
+    throw Error(ExitCode::Usage, "--load-map is not available with --aa-threshold or --aa-method 2 (a pixel's rays "
+                                 "are traced while its neighbours are)");
+  // POV-Ray's adaptive decisions follow its 32-pixel blocks of the whole image, which a region
+  // would cut elsewhere: the region's pixels would not be the full image's.
+  if (check.adaptive() && s.region)
+    throw Error(ExitCode::Usage, "a render region (--start-col ... --end-row) is not available with --aa-threshold "
+                                 "or --aa-method 2 (the adaptive decisions follow blocks of the whole image)");
   s.backend = o.backendName == "serial" ? Backend::Serial : Backend::OpenMP;
   s.threads = o.threads;
   if (!o.scheduleName.empty()) {
@@ -499,6 +516,17 @@ Command addRenderCommand(CLI::App& app) {
           ->excludes(spp)
           ->excludes(aa);
   c->add_option("--sampler", o->samplerName, "Sample pattern: pov, grid or jitter")->capture_default_str();
+  c->add_option("--aa-threshold", o->adaptive.threshold,
+                "POV-Ray's +A t (pov sampler): supersample only the pixels whose colour differs from a neighbour's "
+                "by t or more (0: every pixel)")
+      ->capture_default_str();
+  c->add_option("--aa-method", o->adaptive.method,
+                "POV-Ray's +AM: 1, a pixel's centre ray plus its n x n grid where needed; 2, adaptive subdivision "
+                "from the pixel corners, up to n - 1 levels (--spp n*n is +Rn)")
+      ->capture_default_str();
+  c->add_option("--aa-block", o->adaptive.blockSize,
+                "POV-Ray's +BS: the render block size, which decides the result of --aa-threshold with method 1")
+      ->capture_default_str();
   c->add_option("--seed", o->seed, "Seed of the jitter sampler");
   c->add_option("--backend", o->backendName, "serial, openmp or mpi (start with mpirun; OpenMP threads in each rank)")
       ->check(CLI::IsMember({"serial", "openmp", "mpi"}))

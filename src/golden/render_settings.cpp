@@ -42,23 +42,33 @@ std::vector<std::string> renderSettings(const ManifestEntry& e, const std::strin
     return settings;
   }
   bool antialias = false, jitter = true;
-  int method = 1, depth = 3;
+  int method = 1, depth = 3, block = 32;
   double threshold = 0.3;  // POV-Ray's defaults
+  std::string thresholdText = "0.3";
   for (const std::string& x : w) {
     const bool on = x[0] == '+';
     if (isSwitch(x, "AM")) method = std::atoi(x.c_str() + 3);
     else if (isSwitch(x, "A")) {
       antialias = on;
-      if (on && x.size() > 2) threshold = std::atof(x.c_str() + 2);
+      if (on && x.size() > 2) {
+        thresholdText = x.substr(2);
+        threshold = std::atof(thresholdText.c_str());
+      }
     } else if (isSwitch(x, "R")) depth = std::atoi(x.c_str() + 2);
     else if (isSwitch(x, "J")) jitter = on && !(x.size() > 2 && std::atof(x.c_str() + 2) == 0);
+    else if (isSwitch(x, "BS")) block = std::atoi(x.c_str() + 3);
   }
   if (!antialias) return {"--sampler", "pov", "--spp", "1"};
-  if (method == 1 && threshold == 0.0 && !jitter)
+  const bool known = !jitter && (method == 1 || method == 2) && depth >= 1 && depth <= 9 && block >= 1;
+  if (known && method == 1 && threshold == 0.0 && block == 32)
     return {"--sampler", "pov", "--spp", std::to_string(depth * depth)};
+  // POV-Ray's adaptive antialiasing: pvrt's --aa-threshold, --aa-method and --aa-block.
+  if (known)
+    return {"--sampler",     "pov",         "--spp",      std::to_string(depth * depth), "--aa-threshold",
+            thresholdText,   "--aa-method", std::to_string(method), "--aa-block", std::to_string(block)};
   throw tsvError(manifestPath, e.line,
                  e.name() + ": pvrt golden has no pvrt settings for POV-Ray's \"" + povrayAntialiasing(e.command) +
-                     "\" (only +A0.0 +AM1 +Rn -J and -A; golden/render_settings.cpp maps them)");
+                     "\" (only +An +AM1/+AM2 +Rn [+BSn] -J and -A; golden/render_settings.cpp maps them)");
 }
 
 std::string povrayAntialiasing(const std::string& command) {

@@ -123,7 +123,7 @@ std::vector<Outcome> runSuite(const Suite& suite, const RunOptions& o) {
     }
     for (const std::string& backend : o.backends) {
       Outcome x = failed(e.name() + "." + backend, e.scene, e.variant, backend, problem);
-      x.tolerance = suite.tolerances.of(e.scene);
+      x.tolerance = suite.tolerances.of(e.scene, e.variant);
       x.reference = suite.referencePath(e);
       if (!problem.empty()) {
         outcomes.push_back(x);
@@ -162,7 +162,7 @@ std::vector<Outcome> compareFolder(const Suite& suite, const std::string& images
   std::vector<Outcome> outcomes;
   for (const ManifestEntry& e : sel.entries) {
     Outcome x = failed(e.name() + ".external", e.scene, e.variant, "external", "");
-    x.tolerance = suite.tolerances.of(e.scene);
+    x.tolerance = suite.tolerances.of(e.scene, e.variant);
     x.reference = suite.referencePath(e);
     x.image = images + "/" + e.imageName();
     if (!fs::exists(x.image)) {

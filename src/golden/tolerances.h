@@ -23,8 +23,10 @@ struct Tolerances {
   Tolerance suite;  // `*`, or the built-in default
   std::map<std::string, Tolerance> scenes;
 
-  const Tolerance& of(const std::string& scene) const {
-    auto it = scenes.find(scene);
+  // A line for SCENE.VARIANT holds for that variant alone, before the scene's own line.
+  const Tolerance& of(const std::string& scene, const std::string& variant = "") const {
+    auto it = variant.empty() ? scenes.end() : scenes.find(scene + "." + variant);
+    if (it == scenes.end()) it = scenes.find(scene);
     return it == scenes.end() ? suite : it->second;
   }
 };

@@ -12,31 +12,34 @@ WorkPlan makeWorkPlan(const ScheduleSettings& s, int width, int height, int work
   plan.strategy = s.strategy;
   plan.chunk = s.chunk;
   workers = std::max(1, workers);
+  const int g = std::max(1, s.granule);
+  const long bands = (long(height) + g - 1) / g;  // rows when g = 1
+  auto band = [&](long b0, long b1) { return WorkItem{0, int(b0 * g), width, int(std::min(long(height), b1 * g))}; };
   switch (s.strategy) {
     case Strategy::Block:
       for (int w = 0; w < workers; ++w) {
-        const int y0 = int(long(height) * w / workers), y1 = int(long(height) * (w + 1) / workers);
-        if (y1 > y0) {
-          plan.items.push_back({0, y0, width, y1});
+        const long b0 = bands * w / workers, b1 = bands * (w + 1) / workers;
+        if (b1 > b0) {
+          plan.items.push_back(band(b0, b1));
           plan.owner.push_back(w);
         }
       }
       break;
     case Strategy::Cyclic:
-      for (int y = 0; y < height; ++y) {
-        plan.items.push_back({0, y, width, y + 1});
-        plan.owner.push_back(y % workers);
+      for (long b = 0; b < bands; ++b) {
+        plan.items.push_back(band(b, b + 1));
+        plan.owner.push_back(int(b % workers));
       }
       break;
     case Strategy::Tiles: {
-      const int t = std::max(1, s.tileSize);
+      const int t = (std::max(1, s.tileSize) + g - 1) / g * g;
       for (int y = 0; y < height; y += t)
         for (int x = 0; x < width; x += t)
           plan.items.push_back({x, y, std::min(width, x + t), std::min(height, y + t)});
       break;
     }
     default:  // OpenMP row schedules
-      for (int y = 0; y < height; ++y) plan.items.push_back({0, y, width, y + 1});
+      for (long b = 0; b < bands; ++b) plan.items.push_back(band(b, b + 1));
       break;
   }
   return plan;

@@ -6,6 +6,9 @@
 //           in chunks of `chunk` rows (0: OpenMP's default)
 //   runtime OpenMP's schedule(runtime), i.e. whatever OMP_SCHEDULE says
 //   tiles   square tiles of `tileSize` pixels, handed out on demand
+// With a granule g > 1 (pixels that must be rendered together in g x g squares: POV-Ray's
+// blocks for its adaptive antialiasing) a "row" above is a band of g rows, block
+// boundaries fall on multiples of g, and tile sides are rounded up to a multiple of g.
 #pragma once
 
 #include <string>
@@ -19,6 +22,7 @@ struct ScheduleSettings {
   Strategy strategy = Strategy::Tiles;
   int chunk = 0;
   int tileSize = 32;
+  int granule = 1;  // work items are cut on multiples of this (PixelSampler::blockGranule)
 };
 
 // A rectangle of pixels [x0,x1) x [y0,y1).

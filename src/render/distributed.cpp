@@ -32,12 +32,14 @@ class RankRenderer {
         threads_(s.threads > 0 ? s.threads : threadBudget()), perThread_(size_t(threads_)) {}
 
   void render(const std::vector<int>& items) {
-    // The rows of these items, handed to the rank's threads one at a time.
+    // The rows of these items (bands of the sampler's granule), handed to the rank's
+    // threads one at a time.
     WorkPlan rows;
     rows.strategy = Strategy::Tiles;
+    const int g = sampler_.blockGranule();
     for (int i : items) {
       const WorkItem& it = plan_.items[size_t(i)];
-      for (int y = it.y0; y < it.y1; ++y) rows.items.push_back({it.x0, y, it.x1, y + 1});
+      for (int y = it.y0; y < it.y1; y += g) rows.items.push_back({it.x0, y, it.x1, std::min(it.y1, y + g)});
     }
     const auto t0 = Clock::now();
     parallelFor(Backend::OpenMP, threads_, rows, [&](size_t r, int worker) {
@@ -63,8 +65,9 @@ class RankRenderer {
     const auto start = Clock::now();
     float* load = s_.loadMap ? load_.data() : nullptr;
     if (betweenRows) {
-      for (int y = item.y0; y < item.y1; ++y) {
-        kernel_(scene_, sampler_, {item.x0, y, item.x1, y + 1}, image_, load, ws.counts);
+      const int g = sampler_.blockGranule();  // rows, or bands of whole POV-Ray blocks
+      for (int y = item.y0; y < item.y1; y += g) {
+        kernel_(scene_, sampler_, {item.x0, y, item.x1, std::min(item.y1, y + g)}, image_, load, ws.counts);
         betweenRows();
       }
     } else {

@@ -7,64 +7,12 @@
 #include <limits>
 #include <vector>
 
+#include "render/adaptive_kernel.h"
 #include "render/kernel.h"
+#include "render/pixel_value.h"
 #include "render/tracer.h"
 
 namespace pvrt {
-
-// Below this many rays per pixel a packet saves too little to pay for itself.
-inline constexpr size_t kMinPacket = 4;
-
-// The NaN census. A camera sample whose colour is not finite (NaN or infinite: a bug, or
-// arithmetic past the range of a double) is counted and counts as black: one bad ray must
-// neither poison its pixel nor reach the image, and black is what no light looks like. A
-// pixel whose value overflows the image's float is written as +-FLT_MAX (the brightest
-// value the image can hold) and counted too. Either way `pvrt render` warns.
-inline bool finiteSamples(Color* colors, size_t count, RenderStats& stats) {
-  bool all = true;
-  for (size_t k = 0; k < count; ++k) {
-    Color& c = colors[k];
-    if (std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b)) continue;
-    c = Color();
-    ++stats.nonFiniteSamples;
-    all = false;
-  }
-  return all;
-}
-inline void setPixel(Image& image, int x, int y, Color c, bool finite, RenderStats& stats) {
-  constexpr double kMax = std::numeric_limits<float>::max();
-  for (double* v : {&c.r, &c.g, &c.b})
-    if (!(std::fabs(*v) <= kMax)) {
-      *v = std::copysign(kMax, *v);
-      finite = false;
-    }
-  if (!finite) ++stats.nonFinitePixels;
-  image.set(x, y, c);
-}
-
-// A pixel's rays' colours summed as POV-Ray sums them (TraceTask::SupersampleOnePixel):
-// each a float colour, added in sample order in float, the sum divided by the count in
-// double and stored as a float. Summed in double, a channel within a hair of a level's
-// edge lands on the other side of it.
-struct PixelSum {
-  float r = 0, g = 0, b = 0;
-  void add(const Color& c) {
-    r += float(c.r);
-    g += float(c.g);
-    b += float(c.b);
-  }
-  Color mean(size_t count) const {
-    const double n = double(count);
-    return {double(r) / n, double(g) / n, double(b) / n};
-  }
-};
-
-// The colour of a pixel from its rays' colours: every path below gives the same bits.
-inline Color pixelColor(const Color* colors, size_t count) {
-  PixelSum sum;
-  for (size_t k = 0; k < count; ++k) sum.add(colors[k]);
-  return sum.mean(count);
-}
 
 // Neighbouring pixels of a row share one packet when their rays fit in it: the tree is
 // then walked once for all of them, and their hits' shadow segments go toward each light
@@ -89,6 +37,7 @@ inline int pixelsPerPacket(size_t raysPerPixel) {
 template <EffectSet E>
 void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const WorkItem& rect, Image& image,
                       float* load, RenderStats& stats) {
+  if (sampler.adaptive()) return renderAdaptiveRect<E>(scene, sampler, rect, image, stats);
   Tracer<E> tracer(scene, stats);
   std::vector<SubSample> offsets;
   std::vector<Ray> rays(kMaxPacket);

@@ -80,7 +80,9 @@ WorkItem renderArea(const RenderSettings& s) {
 
 WorkPlan planArea(const RenderSettings& s, int workers) {
   const WorkItem area = renderArea(s);
-  WorkPlan plan = makeWorkPlan(s.schedule, area.x1 - area.x0, area.y1 - area.y0, workers);
+  ScheduleSettings cut = s.schedule;
+  cut.granule = PixelSampler(s.sampler).blockGranule();  // adaptive antialiasing renders whole POV-Ray blocks
+  WorkPlan plan = makeWorkPlan(cut, area.x1 - area.x0, area.y1 - area.y0, workers);
   for (WorkItem& it : plan.items) it = {it.x0 + area.x0, it.y0 + area.y0, it.x1 + area.x0, it.y1 + area.y0};
   return plan;
 }

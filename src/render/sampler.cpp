@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 
 namespace pvrt {
@@ -69,6 +71,26 @@ PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
       for (int i = 0; i < cols_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / cols_, -0.5 + (j + 0.5) / rows_});
   }
   count_ = int(fixed_.size());
+  validateAdaptive();
+}
+
+void PixelSampler::validateAdaptive() {
+  const AdaptiveSettings& a = s_.adaptive;
+  if (!(a.threshold >= 0 && a.threshold <= 1))
+    throw Error(ExitCode::Usage, "--aa-threshold must be between 0 and 1 (POV-Ray's +A), got " +
+                                     fmt::format("{}", a.threshold));
+  if (a.method != 1 && a.method != 2)
+    throw Error(ExitCode::Usage, "--aa-method must be 1 or 2 (POV-Ray's +AM), got " + std::to_string(a.method));
+  if (a.blockSize < 4)
+    throw Error(ExitCode::Usage, "--aa-block must be at least 4 (POV-Ray's +BS), got " + std::to_string(a.blockSize));
+  const bool asked = a.threshold > 0 || a.method == 2;
+  if (asked && s_.kind != SamplerKind::Pov)
+    throw Error(ExitCode::Usage, std::string("--aa-threshold and --aa-method 2 are POV-Ray's antialiasing: they need "
+                                             "--sampler pov, not ") + samplerName(s_.kind));
+  if (asked && a.method == 2 && rows_ > 9)
+    throw Error(ExitCode::Usage, "--aa-method 2 goes at most 9 levels deep (POV-Ray's +R9, --spp 81), got --spp " +
+                                     std::to_string(s_.samplesPerPixel));
+  adaptive_ = asked && count_ > 1;
 }
 
 void PixelSampler::offsets(int x, int y, std::vector<SubSample>& out) const {

@@ -135,11 +135,25 @@ set_tests_properties(e2e.accuracy.table e2e.accuracy.plot PROPERTIES LABELS e2e)
 set_tests_properties(e2e.accuracy.plot PROPERTIES SKIP_RETURN_CODE 77)
 pvrt_expect_error(accuracy_spp_not_square 2 "perfect square"
   ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} --spp-list 1,5 --csv <DIR>/out.csv)
-pvrt_expect_error(accuracy_unknown_sampler 2 "unknown sampler"
+pvrt_expect_error(accuracy_unknown_sampler 2 "unknown sample pattern .halton. \\(use pov, grid, jitter, adaptive1 or adaptive2\\)"
   ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} --samplers pov,halton --csv <DIR>/out.csv)
 pvrt_expect_error(accuracy_reference_size 2 "is 160 x 100, the render would be 100 x 100"
   ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} -W 100 -H 100 --reference ${PROJECT_SOURCE_DIR}/reference/paper1.png
   --csv <DIR>/out.csv)
+# POV-Ray's adaptive antialiasing: its options' ranges, and what it cannot be combined with.
+pvrt_expect_error(aa_threshold_range 2 "--aa-threshold must be between 0 and 1 \\(POV-Ray's \\+A\\), got 1.5"
+  ARGS render ${PVRT_PAPER1} -W 32 -H 20 --spp 9 --aa-threshold 1.5)
+pvrt_expect_error(aa_method_range 2 "--aa-method must be 1 or 2 \\(POV-Ray's \\+AM\\), got 3"
+  ARGS render ${PVRT_PAPER1} -W 32 -H 20 --spp 9 --aa-method 3)
+pvrt_expect_error(aa_block_range 2 "--aa-block must be at least 4 \\(POV-Ray's \\+BS\\), got 2"
+  ARGS render ${PVRT_PAPER1} -W 32 -H 20 --spp 9 --aa-threshold 0.3 --aa-block 2)
+pvrt_expect_error(aa_needs_pov 2 "they need --sampler pov, not jitter"
+  ARGS render ${PVRT_PAPER1} -W 32 -H 20 --spp 9 --sampler jitter --aa-threshold 0.3)
+pvrt_expect_error(aa_method2_depth 2 "--aa-method 2 goes at most 9 levels deep"
+  ARGS render ${PVRT_PAPER1} -W 32 -H 20 --spp 100 --aa-method 2)
+pvrt_expect_error(aa_load_map 2 "--load-map is not available with --aa-threshold"
+  ABSENT out.png map.exr ARGS render ${PVRT_PAPER1} -o <DIR>/out.png -W 32 -H 20 --spp 9 --aa-threshold 0.3
+  --load-map <DIR>/map)
 pvrt_expect_error(accuracy_plot_not_png 2 "--plot must name a .png"
   ABSENT out.pdf ARGS accuracy ${PVRT_PAPER1} --plot <DIR>/out.pdf)
 

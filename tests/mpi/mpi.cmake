@@ -23,6 +23,17 @@ add_test(NAME mpi.hybrid.np2.threads2.dynamic COMMAND ${PVRT_MPI_CHECK} identica
                                                      ${PVRT_MPI_SCENE} 2 dynamic gather 2)
 add_test(NAME mpi.hybrid.np3.threads2.dynamic COMMAND ${PVRT_MPI_CHECK} identical ${PROJECT_BINARY_DIR}
                                                      ${PVRT_MPI_SCENE} 3 dynamic recursive-doubling 2)
+# POV-Ray's adaptive antialiasing decides per block: ranks must agree with the serial render.
+foreach(schedule block cyclic tiles dynamic)
+  foreach(method 1 2)
+    set(name mpi.adaptive.np3.${schedule}.m${method})
+    add_test(NAME ${name} COMMAND ${PVRT_MPI_CHECK} adaptive ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} 3 ${schedule} ${method})
+    set_tests_properties(${name} PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
+  endforeach()
+endforeach()
+add_test(NAME mpi.adaptive.np2.threads2.dynamic.m1
+  COMMAND ${PVRT_MPI_CHECK} adaptive ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} 2 dynamic 1 2)
+set_tests_properties(mpi.adaptive.np2.threads2.dynamic.m1 PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)
 foreach(schedule cyclic dynamic)
   add_test(NAME mpi.load_map.np3.${schedule} COMMAND ${PVRT_MPI_CHECK} loadmap ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} 3 ${schedule})
   set_tests_properties(mpi.load_map.np3.${schedule} PROPERTIES LABELS mpi TIMEOUT 120 RUN_SERIAL TRUE)

@@ -2,6 +2,8 @@
 # Real `mpirun` checks of the MPI backend.
 #   mpi_check.sh identical BUILD SCENE NP SCHEDULE GATHER [THREADS]
 #       the MPI render is bit-identical to the serial render
+#   mpi_check.sh adaptive BUILD SCENE NP SCHEDULE METHOD [THREADS]
+#       the same with POV-Ray's adaptive antialiasing (+A0.3 +AMmethod +R3, 16-pixel blocks)
 #   mpi_check.sh failure BUILD SCENE
 #       a failure injected on one rank ends the whole job quickly, non-zero, with the
 #       message once and no output file
@@ -34,6 +36,14 @@ identical)
   "$pvrt" render "$scene" -o "$work/serial.png" --backend serial "${size[@]}" || exit 1
   OMP_NUM_THREADS=$threads "${mpirun[@]}" -x OMP_NUM_THREADS -np "$np" "$pvrt" render "$scene" -o "$work/mpi.png" \
     --backend mpi --schedule "$schedule" --gather "$gather" --threads "$threads" "${size[@]}" || exit 1
+  "$pvrt" compare "$work/serial.png" "$work/mpi.png" --max-levels 0 --max-fraction-over-1 0
+  ;;
+adaptive)
+  np=$1 schedule=$2 method=$3 threads=${4:-1}
+  aa=(-W 96 -H 60 --spp 9 --aa-threshold 0.3 --aa-method "$method" --aa-block 16 --quiet)
+  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial "${aa[@]}" || exit 1
+  "${mpirun[@]}" -np "$np" "$pvrt" render "$scene" -o "$work/mpi.png" --backend mpi --schedule "$schedule" \
+    --threads "$threads" "${aa[@]}" || exit 1
   "$pvrt" compare "$work/serial.png" "$work/mpi.png" --max-levels 0 --max-fraction-over-1 0
   ;;
 failure)

@@ -93,6 +93,10 @@ TEST(GoldenTolerances, RepositoryFileAndTheDefault) {
   EXPECT_EQ(t.of("fidelity_ior").limits.maxLevels, 20);
   EXPECT_FALSE(t.of("fidelity_ior").reason.empty());
   EXPECT_EQ(t.of("fidelity_ior").limits.maxOffBy1, 17);
+  // A SCENE.VARIANT line holds for that variant alone.
+  EXPECT_EQ(t.of("lights", "am2").limits.maxOffBy1, 1);
+  EXPECT_EQ(t.of("lights", "aa").limits.maxOffBy1, 0);
+  EXPECT_EQ(t.of("lights").limits.maxOffBy1, 0);
   // The corpus's own default tier (its `*` line): nothing over 1 level, nothing off by 1.
   EXPECT_EQ(t.of("paper1").limits.maxLevels, 1);
   EXPECT_EQ(t.of("paper1").limits.maxFractionOver1, 0.0);
@@ -137,6 +141,10 @@ TEST(GoldenSettings, PovrayAntialiasingMapsToThePovSampler) {
   EXPECT_EQ(renderSettings(e, "m"), (std::vector<std::string>{"--sampler", "pov", "--spp", "16"}));
   e.command = "povray +Is.pov +Os.noaa.png +W160 +H100 -D +FN -A";
   EXPECT_EQ(renderSettings(e, "m"), (std::vector<std::string>{"--sampler", "pov", "--spp", "1"}));
+  // POV-Ray's adaptive antialiasing, with pvrt's options of the same names.
+  e.command = "povray +Is.pov +Os.am2.png +W160 +H100 -D +FN +A0.3 +AM2 +R3 -J";
+  EXPECT_EQ(renderSettings(e, "m"), (std::vector<std::string>{"--sampler", "pov", "--spp", "9", "--aa-threshold",
+                                                              "0.3", "--aa-method", "2", "--aa-block", "32"}));
   EXPECT_EQ(aaDepthOf("-A"), 0);
 }
 
@@ -148,7 +156,7 @@ TEST(GoldenSettings, UnmappedPovraySettingsAreAnErrorNotAGuess) {
   e.command = "povray +Is.pov +Os.adaptive.png +W160 +H100 -D +FN +A0.3 +AM2 +R3";
   EXPECT_EQ(errorOf([&] { renderSettings(e, "manifest.tsv"); }),
             "manifest.tsv:5: error: s.adaptive: pvrt golden has no pvrt settings for POV-Ray's \"+A0.3 +AM2 +R3\" "
-            "(only +A0.0 +AM1 +Rn -J and -A; golden/render_settings.cpp maps them)");
+            "(only +An +AM1/+AM2 +Rn [+BSn] -J and -A; golden/render_settings.cpp maps them)");
   e.command = "povray +Is.pov +Os.png +W160 +H100 -D +FN +A0.0 +AM1 +R3";  // jittered
   EXPECT_NE(errorOf([&] { renderSettings(e, "manifest.tsv"); }), "");
 }

@@ -121,5 +121,14 @@ TEST(PovExport, CommandLineFollowsTheRecipe) {
   EXPECT_EQ(povCommandLine("a.pov", "a.png", 8, 6, 0), "povray +Ia.pov +Oa.png +W8 +H6 -D +FN -A");
 }
 
+TEST(PovExport, CommandLineCarriesTheAdaptiveAntialiasing) {
+  EXPECT_EQ(povCommandLine("a.pov", "a.png", 160, 100, 3, {0.3, 1, 32}),
+            "povray +Ia.pov +Oa.png +W160 +H100 -D +FN +A0.3 +AM1 +R3 -J");
+  EXPECT_EQ(povCommandLine("a.pov", "a.png", 160, 100, 4, {0.1, 2, 16}),
+            "povray +Ia.pov +Oa.png +W160 +H100 -D +FN +A0.1 +AM2 +R4 -J +BS16");
+  // -A has no threshold to carry.
+  EXPECT_EQ(povCommandLine("a.pov", "a.png", 8, 6, 0, {0.3, 2, 32}), "povray +Ia.pov +Oa.png +W8 +H6 -D +FN -A");
+}
+
 }  // namespace
 }  // namespace pvrt

@@ -37,6 +37,33 @@ TEST(Schedule, TilesCoverTheImageExactlyOnce) {
   EXPECT_TRUE(p.owner.empty());
 }
 
+// A granule (POV-Ray's block for adaptive antialiasing) turns rows into bands of that many
+// rows and rounds tiles up to it, so no work item splits a block.
+TEST(Schedule, AGranuleCutsOnlyOnItsMultiples) {
+  for (Strategy st : {Strategy::Block, Strategy::Cyclic, Strategy::Dynamic, Strategy::Tiles}) {
+    ScheduleSettings s{st, 0, 20};
+    s.granule = 16;
+    const WorkPlan p = makeWorkPlan(s, 50, 70, 3);
+    EXPECT_EQ(coveredPixels(p), 50 * 70) << strategyName(st);
+    for (const WorkItem& it : p.items) {
+      EXPECT_EQ(it.x0 % 16, 0) << strategyName(st);
+      EXPECT_EQ(it.y0 % 16, 0) << strategyName(st);
+      EXPECT_TRUE(it.x1 % 16 == 0 || it.x1 == 50) << strategyName(st);
+      EXPECT_TRUE(it.y1 % 16 == 0 || it.y1 == 70) << strategyName(st);
+    }
+  }
+  ScheduleSettings cyclic{Strategy::Cyclic, 0, 32};
+  cyclic.granule = 16;
+  const WorkPlan p = makeWorkPlan(cyclic, 50, 70, 2);
+  ASSERT_EQ(p.items.size(), 5u);  // bands 0-16, 16-32, 32-48, 48-64, 64-70
+  EXPECT_EQ(p.items[4].y0, 64);
+  EXPECT_EQ(p.items[4].y1, 70);
+  EXPECT_EQ(p.owner, (std::vector<int>{0, 1, 0, 1, 0}));
+  ScheduleSettings tiles{Strategy::Tiles, 0, 20};
+  tiles.granule = 16;
+  EXPECT_EQ(makeWorkPlan(tiles, 50, 70, 2).items.size(), 2u * 3u);  // 32 x 32 tiles
+}
+
 TEST(Schedule, MoreWorkersThanRowsLeavesNoEmptyBlock) {
   const WorkPlan p = makeWorkPlan({Strategy::Block, 0, 32}, 3, 2, 4);
   EXPECT_EQ(coveredPixels(p), 6);

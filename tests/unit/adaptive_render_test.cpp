@@ -1,0 +1,70 @@
+// POV-Ray's adaptive antialiasing through the renderer (render/adaptive_kernel.h): what a
+// real scene's image must be, whatever the decisions were.
+#include <gtest/gtest.h>
+
+#include "test_scenes.h"
+
+namespace pvrt {
+namespace {
+
+const char* kScene = R"(<scene>
+  <camera location="0 2 -6" look_at="0 0.8 0" right="1.6 0 0"/>
+  <light_source location="-4 6 -5" color="1 1 1"/>
+  <plane normal="0 1 0" distance="0"><pigment><checker color1="1 1 1" color2="0.1 0.1 0.1"/></pigment></plane>
+  <sphere center="0 1 0" radius="1"><pigment color="0.8 0.3 0.1"/><finish phong="0.6"/></sphere>
+</scene>)";
+
+RenderResult renderWith(SamplerSettings sampler) {
+  RenderSettings s = test::settings(80, 50, Backend::OpenMP, 2);
+  s.sampler = sampler;
+  return test::renderXml(kScene, s);
+}
+
+// A method 1 pixel is either its centre ray alone (POV-Ray's -A) or the centre plus the
+// grid (+A0.0), bit for bit: the same rays, summed the same way.
+TEST(AdaptiveRender, Method1PixelsAreEitherTheCentreOrTheFullSupersample) {
+  const RenderResult centre = renderWith({SamplerKind::Pov, 1, 0});
+  const RenderResult full = renderWith({SamplerKind::Pov, 9, 0});
+  const RenderResult adaptive = renderWith({SamplerKind::Pov, 9, 0, {0.3, 1, 32}});
+  long fromCentre = 0, fromFull = 0, neither = 0;
+  for (int y = 0; y < 50; ++y)
+    for (int x = 0; x < 80; ++x) {
+      const float *a = adaptive.image.row(y) + 3 * x, *c = centre.image.row(y) + 3 * x, *f = full.image.row(y) + 3 * x;
+      const bool isCentre = a[0] == c[0] && a[1] == c[1] && a[2] == c[2];
+      const bool isFull = a[0] == f[0] && a[1] == f[1] && a[2] == f[2];
+      fromCentre += isCentre && !isFull;
+      fromFull += isFull && !isCentre;
+      neither += !isCentre && !isFull;
+    }
+  EXPECT_EQ(neither, 0);
+  EXPECT_GT(fromCentre, 0);  // the flat parts were left alone
+  EXPECT_GT(fromFull, 0);    // the edges were supersampled
+  // The camera rays: every pixel's centre, each block's frame (row above, column left),
+  // and 9 more for each supersampled pixel.
+  const uint64_t frames = 2 * 80 + 3 * 50;  // 2 block rows, 3 block columns of 32 pixels
+  EXPECT_EQ((adaptive.totals.primaryRays - 80 * 50 - frames) % 9, 0u);
+  EXPECT_GE((adaptive.totals.primaryRays - 80 * 50 - frames) / 9, uint64_t(fromFull));
+}
+
+// Threshold 0 makes method 1 the plain pov sampler (every pixel supersampled once); a higher
+// threshold supersamples fewer pixels.
+TEST(AdaptiveRender, ThresholdsAtTheEndsOfTheRange) {
+  const RenderResult full = renderWith({SamplerKind::Pov, 9, 0});
+  EXPECT_EQ(renderWith({SamplerKind::Pov, 9, 0, {0.0, 1, 32}}).image.data(), full.image.data());
+  const RenderResult lax = renderWith({SamplerKind::Pov, 9, 0, {1.0, 1, 32}});
+  const RenderResult strict = renderWith({SamplerKind::Pov, 9, 0, {0.05, 1, 32}});
+  EXPECT_LT(lax.totals.primaryRays, strict.totals.primaryRays);
+}
+
+// Method 2 at +A0.0 subdivides every pixel fully: POV-Ray's +R3 is a 5 x 5 lattice from
+// corner to corner, its points weighted 1, 2, 2, 2, 1 along each axis (the trapezoid rule).
+TEST(AdaptiveRender, Method2AtThresholdZeroTracesTheWholeLattice) {
+  const RenderResult r = renderWith({SamplerKind::Pov, 9, 0, {0.0, 2, 32}});
+  // Corners of each 32-pixel block (its pixels' and one row and column more), then 21 more
+  // lattice points a pixel.
+  const uint64_t corners = (32 + 1) * (32 + 1) * 2 + (16 + 1) * (32 + 1) + (32 + 1) * (18 + 1) * 2 + (16 + 1) * (18 + 1);
+  EXPECT_EQ(r.totals.primaryRays, corners + 80 * 50 * 21);
+}
+
+}  // namespace
+}  // namespace pvrt
