@@ -229,9 +229,18 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
   for (size_t first = 0; first < lights.size() && !interrupt::requested(); first += batch) {
     const size_t n = std::min(batch, lights.size() - first);
     std::vector<LightBuffer> built = buildBatch(lights.subspan(first, n), occluders, threads, left / n);
+    bool anyFit = false;
     for (size_t k = 0; k < n; ++k) {
+      anyFit = anyFit || !built[k].overMemoryLimit();
       left -= std::min(left, built[k].bytes());
       out[first + k] = std::move(built[k]);
+    }
+    // A batch none of whose lights fit in its share: the budget is spent. The lights after it
+    // go without a buffer rather than each costing a pass over the primitives to find that out
+    // (10^5 spheres under 1000 lights: 26 s of a build that made 16 buffers).
+    if (!anyFit) {
+      for (size_t k = first + n; k < lights.size(); ++k) out[k].overMemoryLimit_ = true;
+      break;
     }
   }
   return out;
