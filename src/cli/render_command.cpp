@@ -30,6 +30,7 @@
 #include "render/renderer.h"
 #include "render/render_region.h"
 #include "render/time_budget.h"
+#include "cli/light_buffer_totals.h"
 #include "core/memory_use.h"
 #include "scene/xml_loader.h"
 #include "scene/xml_writer.h"
@@ -149,15 +150,7 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   const BvhStats& b = scene.bvh.stats();
   fmt::print("  BVH                   {} nodes, {} leaves, depth {}, {:.1f} KiB, built in {:.4f} s\n", b.nodes,
              b.leaves, b.maxDepth, double(b.bytes) / 1024.0, b.buildSeconds);
-  size_t buffers = 0, entries = 0, bytes = 0;
-  int cells = 0;
-  for (const LightBuffer& lb : scene.lightBuffers) {
-    if (!lb.valid()) continue;
-    ++buffers;
-    entries += lb.entries();
-    bytes += lb.bytes();
-    cells = std::max(cells, lb.resolution());
-  }
+  const auto [buffers, entries, bytes, cells] = lightBufferTotals(scene);
   if (buffers > 0)
     fmt::print("  Light buffers         {} (up to {}x{} cells a face), {} entries, {:.1f} KiB ({:.0f} bytes a "
                "buffer), built in {:.4f} s\n",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "cli/light_buffer_totals.h"
 #include "render/effects.h"
 
 namespace pvrt::cli {
@@ -90,15 +91,7 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
               {"depth", b.maxDepth},
               {"bytes", b.bytes},
               {"build_seconds", b.buildSeconds}};
-  size_t buffers = 0, entries = 0, bytes = 0;
-  int cells = 0;
-  for (const LightBuffer& lb : scene.lightBuffers) {
-    if (!lb.valid()) continue;
-    ++buffers;
-    entries += lb.entries();
-    bytes += lb.bytes();
-    cells = std::max(cells, lb.resolution());
-  }
+  const auto [buffers, entries, bytes, cells] = lightBufferTotals(scene);
   j["light_buffers"] = {{"count", buffers},
                         {"max_cells_per_side", cells},
                         {"entries", entries},
