@@ -799,6 +799,7 @@ Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads) {
   for (size_t b = 0, j = boundedCount_; b < unbounded.size(); ++b)
     for (uint32_t i : unbounded[b]) order[j++] = i;
   permuteInPlace(primitives.records, order, threads);
+  interrupt::check();
   items_ = std::move(primitives.records);
   others_ = std::move(primitives.others);
   followRecords(threads);
@@ -832,6 +833,7 @@ void Bvh::followRecords(int threads) {
     }
   });
   permuteInPlace(others_, order, threads);
+  interrupt::check();
 }
 
 }  // namespace pvrt

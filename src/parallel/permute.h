@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/interrupt.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -16,6 +17,8 @@ namespace pvrt {
 // The permutation's cycles are listed first (one thread: a walk over `order`); then each
 // short cycle is turned by one thread, and a long one in pieces at the same time, each piece's
 // first element set aside beforehand for the piece that ends where it starts.
+// A signal (core/interrupt.h) stops it early with `a` in no useful order: callers that go on
+// call interrupt::check() after it.
 template <class T>
 void permuteInPlace(std::vector<T>& a, const std::vector<uint32_t>& order, int threads) {
   const size_t n = a.size();
@@ -24,6 +27,7 @@ void permuteInPlace(std::vector<T>& a, const std::vector<uint32_t>& order, int t
     std::vector<bool> done(n, false);
     for (size_t i = 0; i < n; ++i) {
       if (done[i]) continue;
+      if ((i & 4095) == 0 && interrupt::requested()) return;
       T first = std::move(a[i]);
       for (size_t j = i;;) {
         done[j] = true;
@@ -84,6 +88,7 @@ void permuteInPlace(std::vector<T>& a, const std::vector<uint32_t>& order, int t
     saved[pieces[k]] = std::move(a[seq[work[pieces[k]].begin]]);
   });
   parallelIndices(work.size(), threads, [&](size_t k) {
+    if (interrupt::requested()) return;
     const Work& w = work[k];
     auto shift = [&](size_t from, size_t to) {  // seq[from, to): each slot takes the next one's
       for (size_t m = from; m + 1 < to; ++m) a[seq[m]] = std::move(a[seq[m + 1]]);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 
+#include "core/interrupt.h"
 #include "core/prefault.h"
 #include "geometry/primitive.h"
 #include "parallel/parallel_for.h"
@@ -114,7 +115,10 @@ void MaterialTable::addObjects(std::span<const ObjectDesc> objects, int threads)
   // add() would have.
   if ((threads > 0 ? threads : threadBudget()) <= 1) {
     materials_.reserve(materials_.size() + objects.size());
-    for (const ObjectDesc& o : objects) add(o.material, o.transforms.combined());
+    for (size_t i = 0; i < objects.size(); ++i) {
+      if ((i & 4095) == 0 && interrupt::requested()) return;  // the caller checks
+      add(objects[i].material, objects[i].transforms.combined());
+    }
     return;
   }
   const size_t before = materials_.size();
@@ -129,6 +133,7 @@ void MaterialTable::addObjects(std::span<const ObjectDesc> objects, int threads)
     Part& part = parts[b];
     std::unordered_multimap<size_t, uint32_t> index;
     for (size_t i = lo; i < hi; ++i) {
+      if ((i & 4095) == 0 && interrupt::requested()) return;  // the caller checks
       Made made = make(objects[i].material, objects[i].transforms.combined());
       if (made.checker) {
         made.material.checker = int32_t(part.checkers.size());

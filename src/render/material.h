@@ -47,7 +47,7 @@ class MaterialTable {
   // Adds the material of the next object; its index is the number added before.
   void add(const MaterialDesc& desc, const Affine& objectToWorld);
   // add() for each object's material in turn, on up to `threads` threads (0: threadBudget()):
-  // the same table.
+  // the same table. A signal stops it part way (core/interrupt.h): callers check after it.
   void addObjects(std::span<const ObjectDesc> objects, int threads = 0);
   void reserve(size_t objects) { materials_.reserve(objects); }
 

@@ -248,6 +248,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   const std::vector<ObjectDesc>& objects = desc.objects;
   const int threads = threadBudget();
   s.materials.addObjects(objects, threads);
+  interrupt::check();
   // The primitives, a block of objects at a time: each block's counted, then made where the
   // blocks before leave off. They go straight into their compact records (an untransformed
   // sphere is nothing more), so that a big scene never holds a Primitive for each.
@@ -256,6 +257,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
     for (size_t i = lo; i < hi; ++i) first[b + 1] += primitiveCount(objects[i]);
   });
+  interrupt::check();
   std::partial_sum(first.begin(), first.end(), first.begin());
   PrimitiveStore store;
   resizePrefaulted(store.records, first.back(), threads);
@@ -268,6 +270,8 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
     PrimitiveSink sink{&made};
     size_t k = first[b];
     for (size_t i = lo; i < hi; ++i) {
+      // A block may be a million objects on one thread: seconds (checked after the loop).
+      if ((i & 4095) == 0 && interrupt::requested()) return;
       made.clear();
       std::visit(PrimitiveBuilder(sink, uint32_t(i), objects[i].noShadow, objects[i].transforms),
                  objects[i].shape);
@@ -286,6 +290,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
       }
     }
   });
+  interrupt::check();
   for (size_t b = 0; b < blocks.count; ++b)
     for (uint32_t object : interiors[b])
       if (s.cameraInteriors.find(object) < 0) s.cameraInteriors.push(object);

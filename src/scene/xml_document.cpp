@@ -93,8 +93,10 @@ SceneBytes::SceneBytes(const std::string& path) {
     parallelIndices(whole.size(), 0, [&](size_t i) {
       const size_t begin = i * kPart, end = std::min(size, begin + kPart);
       size_t at = begin;
-      while (at < end) {
-        const ssize_t n = ::pread(f.fd, data.get() + at, end - at, off_t(at));
+      // A megabyte at a time, so that a signal is seen (a part not read whole falls back to
+      // readSceneBytes, which throws the interrupt).
+      while (at < end && !interrupt::requested()) {
+        const ssize_t n = ::pread(f.fd, data.get() + at, std::min(end - at, size_t(1) << 20), off_t(at));
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break;
         at += size_t(n);

@@ -209,6 +209,8 @@ class Loader {
     std::vector<PieceRead> reads(count);
     parallelIndices(count, 0, [&](size_t k) {
       PieceRead& read = reads[k];
+      // After a signal the pieces left are skipped, not parsed (checked after the loop).
+      if (interrupt::requested()) return;
       try {
         const XmlPiece& p = split.pieces[k];
         const std::string_view text = bytes.substr(p.begin, p.end - p.begin);
@@ -216,7 +218,7 @@ class Loader {
         if (!read.text) return;
         tinyxml2::XMLDocument doc;
         read.wellFormed = doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS;
-        if (!read.wellFormed || rootError) return;
+        if (!read.wellFormed || rootError || interrupt::requested()) return;
         built.prefault(first[k], first[k + 1]);
         built.ensure(first[k + 1]);
         Loader(file_, Mode::Ahead).readAhead(doc, p.firstLine - 1, places, first[k], first[k + 1], read);
@@ -227,6 +229,7 @@ class Loader {
         read.failure = std::current_exception();
       }
     });
+    interrupt::check();  // before anything would read the file again whole
     for (const PieceRead& read : reads)
       if (!read.text || !read.wellFormed || read.miscounted) return std::nullopt;
     for (const PieceRead& read : reads)
@@ -273,6 +276,7 @@ class Loader {
       try {
         element(e);
       } catch (const Error&) {
+        if (interrupt::requested()) throw;  // not the element's fault: the piece ends here
         read.complete = false;  // the in-order pass reads it again, and fails there or earlier
         break;
       }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "core/interrupt.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -206,7 +207,8 @@ std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
   // scanned again from there. So the cut is the same for any parts and any number of threads.
   if (partBytes == 0) {
     const size_t threads = size_t(std::max(1, threadBudget()));
-    partBytes = threads > 1 ? std::max(size_t(1) << 20, (bytes.size() - split.bodyBegin) / (4 * threads)) : bytes.size();
+    // (One thread scans in parts too: between parts it looks for a signal.)
+    partBytes = std::max(size_t(1) << 20, (bytes.size() - split.bodyBegin) / (4 * threads));
   }
   partBytes = std::max<size_t>(partBytes, 1);
   const size_t body = bytes.size() - split.bodyBegin;
@@ -215,11 +217,13 @@ std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
   std::vector<size_t> starts(parts);
   std::vector<std::vector<Met>> met(parts);
   parallelIndices(parts, 0, [&](size_t i) {
+    if (interrupt::requested()) return;  // checked after the loop
     starts[i] = i == 0 ? split.bodyBegin : guessBetweenChildren(bytes, split.bodyBegin + i * partBytes, partEnd(i));
     if (starts[i] == std::string_view::npos) return;
     met[i].reserve((partEnd(i) - starts[i]) / 128);
     scanChildren(bytes, starts[i], partEnd(i), i > 0, counts, met[i]);
   });
+  interrupt::check();
 
   XmlPiece piece{scan.pos, scan.pos};
   size_t at = split.bodyBegin;  // where the true scan is: between two children

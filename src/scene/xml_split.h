@@ -38,8 +38,8 @@ struct XmlSplit {
 // '/' or '>' of its start tag), so that a reader knows, before any piece is parsed, how many
 // elements of a kind come before each piece; it is called from several threads at once.
 // The scan itself runs on every thread (threadBudget()), over parts of the body of
-// `partBytes` (0: a few megabytes, when there is more than one thread); the result is the
-// same for any parts and threads.
+// `partBytes` (0: a few megabytes); the result is the same for any parts and threads.
+// Throws interrupt::error() when a signal comes during the scan (core/interrupt.h).
 std::optional<XmlSplit> splitXmlRoot(std::string_view bytes, size_t pieceBytes,
                                      const std::function<bool(std::string_view name)>& counts = {},
                                      size_t partBytes = 0);

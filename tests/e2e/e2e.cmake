@@ -108,14 +108,15 @@ pvrt_expect_error(output_dir_missing 4 "no such directory" ABSENT nope ARGS rend
 
 # Interrupted renders: Ctrl-C (SIGINT) and SIGTERM exit with 130 and 143 within 0.5 s and write
 # nothing; SIGKILL writes nothing either (interrupt.sh). Then each other long stage: a scene
-# read from a pipe that never ends, the BVH build, the light-buffer build, a deep trace.
+# read from a pipe that never ends, the load of a big file, the BVH build, the light-buffer
+# build, a deep trace.
 foreach(sig INT TERM KILL)
   add_test(NAME e2e.interrupt.${sig}
     COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/interrupt.sh ${sig} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
             ${PVRT_E2E_DIR}/interrupt/${sig})
   set_tests_properties(e2e.interrupt.${sig} PROPERTIES LABELS e2e TIMEOUT 120)
 endforeach()
-foreach(stage pipe bvh buffers trace)
+foreach(stage pipe load bvh buffers trace)
   foreach(sig INT TERM)
     add_test(NAME e2e.interrupt.${stage}.${sig}
       COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/interrupt.sh ${sig} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}

@@ -10,8 +10,12 @@
 # STAGE (default render):
 #   render   a 4000 x 2500 render of SCENE at 16 samples a pixel (minutes);
 #   pipe     SCENE read from a pipe (/dev/stdin) whose writer sends half of it and then waits for ever;
-#   bvh      the BVH build of 10^6 generated spheres without lights (the signal is sent
-#            halfway through the build, as timed by a first run with --stats);
+#   load     the load of 10^6 generated spheres without lights (the signal is sent halfway
+#            through it, as timed by a first run with --stats);
+#   bvh      their BVH build (the signal is sent halfway through the build). For these two the
+#            render after the build lasts seconds, so that a run some tenths faster than the
+#            timing one is still there for the signal (which then lands in the build or the
+#            render: either must stop within the limit);
 #   buffers  the light-buffer build of `pvrt generate --spheres 100000 --lights 1000`
 #            (tens of seconds);
 #   trace    one deep trace: six clear spheres with reflection at max_trace_level 256, whose
@@ -34,14 +38,17 @@ render)
 pipe)
   args=(--threads 1)
   settle=0.5 ;;
-bvh)
+load | bvh)
   "$pvrt" generate --spheres 1000000 --lights 0 --no-floor -o "$work/scene.xml" || exit 1
   # One thread: the build (about 1 s with two) then lasts long enough that the signal, timed
   # by a first run, still lands in it when the load of a later run is some tenths faster.
   scene=$work/scene.xml args=(-W 8 -H 8 --threads 1)
-  # When the build runs: after the load. Halfway through it, from a first run's figures.
   times=$("$pvrt" render "$scene" -o "$work/first.png" "${args[@]}" --stats | sed -n 's/.*Time *load \([0-9.]*\) s, build \([0-9.]*\) s.*/\1 \2/p')
-  settle=$(awk -v t="$times" 'BEGIN { split(t, a, " "); print a[1] + a[2] / 2 }')
+  # Halfway through the load, or through the build (which follows the load).
+  half='a[1] / 2'
+  [ "$stage" = bvh ] && half='a[1] + a[2] / 2'
+  settle=$(awk -v t="$times" "BEGIN { split(t, a, \" \"); print $half }")
+  args=(-W 320 -H 200 --spp 16 --threads 1)
   echo "first run: load and build $times s; signal $settle s after the handler" ;;
 buffers)
   "$pvrt" generate --spheres 100000 --lights 1000 -o "$work/scene.xml" || exit 1

@@ -550,9 +550,15 @@ TEST(LightBuffer, AMemoryLimitLeavesLightsOutButNotAPixel) {
     EXPECT_EQ(limited.lightsOverMemoryLimit, limited.lights.size() - valid);
     EXPECT_GE(valid, previous) << "limit " << limit;  // more memory, never fewer buffers
     previous = valid;
-    if (limit <= bvh) EXPECT_EQ(valid, 0u);
-    if (limit > bvh + 3 * fullBytes) EXPECT_EQ(valid, limited.lights.size());
-    if (limit > bvh && limit < bvh + fullBytes) EXPECT_LT(valid, limited.lights.size());
+    if (limit <= bvh) {
+      EXPECT_EQ(valid, 0u);
+    }
+    if (limit > bvh + 3 * fullBytes) {
+      EXPECT_EQ(valid, limited.lights.size());
+    }
+    if (limit > bvh && limit < bvh + fullBytes) {
+      EXPECT_LT(valid, limited.lights.size());
+    }
     for (int k = 0; k < 2; ++k) {
       s.sampler.samplesPerPixel = k == 0 ? 1 : 9;
       EXPECT_EQ(render(limited, s).image.data(), images[size_t(k)]) << "limit " << limit << " spp " << s.sampler.samplesPerPixel;
