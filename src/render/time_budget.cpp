@@ -72,14 +72,26 @@ double predictSecondsPerPixel(const std::vector<CostPoint>& unordered, double ra
   return along(*(hi - 1), *hi, rays);
 }
 
+bool takesAnyCount(SamplerKind kind) { return kind == SamplerKind::Jitter; }
+
+int nextSmallerCount(SamplerKind kind, int samplesPerPixel) {
+  if (samplesPerPixel <= 1) return 1;
+  if (takesAnyCount(kind)) return samplesPerPixel - std::max(1, samplesPerPixel / 4);
+  const int n = int(std::lround(std::sqrt(double(samplesPerPixel))));
+  return (n - 1) * (n - 1);
+}
+
 int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostPoint>& points, double budgetSeconds,
                           int maxSamplesPerPixel) {
-  auto fits = [&](int n) {
-    return double(pixels) * predictSecondsPerPixel(points, cameraRaysPerPixel(kind, n * n)) <= budgetSeconds;
+  // c = step(k) for k = 1, 2, ...: every whole number for jitter, the squares for pov and grid.
+  const bool any = takesAnyCount(kind);
+  auto step = [&](int k) { return any ? k : k * k; };
+  auto fits = [&](int k) {
+    return double(pixels) * predictSecondsPerPixel(points, cameraRaysPerPixel(kind, step(k))) <= budgetSeconds;
   };
-  // Binary search on the side n of the grid: the predicted time grows with n.
-  int lo = 1, hi = std::max(1, int(std::floor(std::sqrt(double(maxSamplesPerPixel)))));
-  while (hi * hi > maxSamplesPerPixel) --hi;
+  // Binary search on k: the predicted time grows with it.
+  int lo = 1, hi = std::max(1, any ? maxSamplesPerPixel : int(std::floor(std::sqrt(double(maxSamplesPerPixel)))));
+  while (step(hi) > maxSamplesPerPixel) --hi;
   if (!fits(lo)) return 1;
   while (lo < hi) {
     const int mid = lo + (hi - lo + 1) / 2;
@@ -88,7 +100,7 @@ int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostP
     else
       hi = mid - 1;
   }
-  return lo * lo;
+  return step(lo);
 }
 
 BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, double budgetSeconds, double spentSeconds,
@@ -141,10 +153,8 @@ BudgetPlan planForBudget(const Scene& scene, const RenderSettings& settings, dou
     // where c = 4 fits: a ray at c = 1 costs about 3 of one at c >= 4); a second comes from c >= 4.
     if (plan.points.size() == 1 && maxSamplesPerPixel >= 4) c = std::max(c, 4);
     // A pilot no dearer than its share of what is left, even if the cost were proportional.
-    while (c > 1 && dearest * cameraRaysPerPixel(kind, c) / measured > kPilotShareOfLeft * left()) {
-      const int n = int(std::lround(std::sqrt(double(c))));
-      c = (n - 1) * (n - 1);
-    }
+    while (c > 1 && dearest * cameraRaysPerPixel(kind, c) / measured > kPilotShareOfLeft * left())
+      c = nextSmallerCount(kind, c);
     if (cameraRaysPerPixel(kind, c) <= measured) break;  // between measured points: read off them
     going = run(c);
   }

@@ -33,9 +33,16 @@ double cameraRaysPerPixel(SamplerKind kind, int samplesPerPixel);
 // rays when there is one point.
 double predictSecondsPerPixel(const std::vector<CostPoint>& points, double rays);
 
-// The largest perfect square c <= maxSamplesPerPixel whose predicted time (pixels x seconds
-// per pixel at the sampler's rays for c) is at most budgetSeconds; 1 when none fits. Pure,
-// and monotone in the budget.
+// Whether the sampler takes any whole c (jitter), not only perfect squares (pov, grid).
+bool takesAnyCount(SamplerKind kind);
+// A c the sampler takes below `samplesPerPixel` (> 1): the next smaller square for pov and
+// grid, about three quarters of it for jitter; 1 for 1.
+int nextSmallerCount(SamplerKind kind, int samplesPerPixel);
+
+// The largest c <= maxSamplesPerPixel that the sampler takes (any whole number for jitter, a
+// perfect square for pov and grid) whose predicted time (pixels x seconds per pixel at the
+// sampler's rays for c) is at most budgetSeconds; 1 when none fits. Pure, and monotone in
+// the budget.
 int chooseSamplesPerPixel(SamplerKind kind, long pixels, const std::vector<CostPoint>& points, double budgetSeconds,
                           int maxSamplesPerPixel = 1 << 16);
 

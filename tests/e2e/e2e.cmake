@@ -165,11 +165,15 @@ set_tests_properties(e2e.generate.radii PROPERTIES LABELS e2e)
 pvrt_expect_error(generate_radius_max_below_min 2 "radius-min <= radius-max"
   ABSENT out.xml ARGS generate --spheres 100 --radius-max 0.1 -o <DIR>/out.xml)
 
-# `pvrt render --time-budget`: pilots at c = 1 and up, a square c chosen and printed; budgets must be positive.
+# `pvrt render --time-budget`: pilots at c = 1 and up, a c chosen and printed (jitter, any c, unless --sampler says otherwise); budgets must be positive.
 add_test(NAME e2e.time_budget
   COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget.png -W 32 -H 20 --time-budget 0.2)
 set_tests_properties(e2e.time_budget PROPERTIES LABELS e2e
-  PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: [1-6] pilot\\(s\\) on [0-9.]+% of the pixels took [0-9.]+ s \\(c=1: [0-9.e+-]+ s/pixel.*\\); chose --spp [0-9]+ \\(predicted render")
+  PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: [1-6] pilot\\(s\\) on [0-9.]+% of the pixels took [0-9.]+ s \\(c=1: [0-9.e+-]+ s/pixel.*\\); chose --spp [0-9]+ --sampler jitter \\(predicted render")
+add_test(NAME e2e.time_budget_pov
+  COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget_pov.png -W 32 -H 20 --time-budget 0.2 --sampler pov)
+set_tests_properties(e2e.time_budget_pov PROPERTIES LABELS e2e
+  PASS_REGULAR_EXPRESSION "chose --spp (1|4|9|16|25|36|49|64|81|100|121|144|169|196|225|256|[0-9]*(0|1|4|5|6|9)) --sampler pov \\(predicted")
 pvrt_expect_error(time_budget_zero 2 "--time-budget must be a positive number of seconds, got 0"
   ARGS render ${PVRT_PAPER1} --time-budget 0)
 pvrt_expect_error(time_budget_negative 2 "--time-budget must be a positive number of seconds, got -1"

@@ -47,10 +47,29 @@ TEST(TimeBudget, ChoosesTheLargestSquareThatFits) {
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Grid, kPixels, kProportional, 16.0), 16);
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Grid, kPixels, kProportional, 15.9), 9);
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kProportional, 16.0), 9);  // 17 s for c = 16
-  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kProportional, 1e9, 1000), 961);  // capped
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Grid, kPixels, kProportional, 1e9, 1000), 961);  // capped
   // Affine: c = 16 (17 rays) costs 2.7 s, c = 25 (26 rays) 3.6 s.
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kAffine, 3.5), 16);
   EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Pov, kPixels, kAffine, 3.6 + 1e-9), 25);
+}
+
+TEST(TimeBudget, JitterTakesAnyWholeNumberThatFits) {
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kProportional, 20.0), 20);
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kProportional, 19.99), 19);
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kProportional, 2.5), 2);
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kProportional, 1e9, 1000), 1000);  // capped
+  // Affine: c = 20 costs 1 + 2 = 3.0 s.
+  EXPECT_EQ(chooseSamplesPerPixel(SamplerKind::Jitter, kPixels, kAffine, 3.0 + 1e-9), 20);
+}
+
+TEST(TimeBudget, SmallerCountsAreOnesTheSamplerTakes) {
+  EXPECT_EQ(nextSmallerCount(SamplerKind::Pov, 25), 16);
+  EXPECT_EQ(nextSmallerCount(SamplerKind::Grid, 4), 1);
+  EXPECT_EQ(nextSmallerCount(SamplerKind::Jitter, 20), 15);
+  EXPECT_EQ(nextSmallerCount(SamplerKind::Jitter, 3), 2);
+  for (SamplerKind kind : {SamplerKind::Pov, SamplerKind::Jitter}) EXPECT_EQ(nextSmallerCount(kind, 1), 1);
+  EXPECT_TRUE(takesAnyCount(SamplerKind::Jitter));
+  EXPECT_FALSE(takesAnyCount(SamplerKind::Pov));
 }
 
 TEST(TimeBudget, AtLeastOneSampleEvenWhenNothingFits) {
@@ -64,7 +83,9 @@ TEST(TimeBudget, ChoiceIsMonotoneInTheBudget) {
       for (double budget = 0.25; budget < 1e5; budget *= 1.1) {
         const int c = chooseSamplesPerPixel(kind, kPixels, points, budget);
         EXPECT_GE(c, previous) << "budget " << budget;
-        EXPECT_GT(perfectSquareRoot(c), 0) << c;
+        if (!takesAnyCount(kind)) {
+          EXPECT_GT(perfectSquareRoot(c), 0) << c;
+        }
         previous = c;
       }
       EXPECT_GT(previous, 1);
