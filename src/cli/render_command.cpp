@@ -554,7 +554,8 @@ Command addRenderCommand(CLI::App& app) {
               "MPI dynamic: rank 0 renders tiles too, answering requests between them (the default); "
               "--no-master-renders keeps it to answering");
   c->add_option("--mpi-timeout", o->mpiTimeout,
-                "MPI: end the job (exit 75) when a rank on this node has been stopped (SIGSTOP) this many seconds "
+                "MPI: end the job (exit 75) when a rank has been stopped (SIGSTOP) this many seconds (other nodes: "
+                "when its heartbeats stop) "
                 "(0: never)")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();

@@ -38,7 +38,9 @@ NodePlace placeOnNode(const std::vector<int>& cpus);
 // count) for `seconds`, the lowest rank of the node that is not stopped prints which and ends
 // the job with exit code 75 instead of waiting for it for ever. A rank's own stop (the whole
 // job stopped with Ctrl-Z, say) restarts its clocks. 0 seconds: no watchdog. Ranks on other
-// nodes are not watched (their /proc cannot be seen).
+// nodes cannot be seen in /proc: the first ranks of the nodes send each other heartbeats
+// round a ring (parallel/heartbeat.h), and one that goes quiet for `seconds` ends the job the
+// same way. PVRT_WATCHDOG_HEARTBEATS_ONLY=1 treats every rank as a node of its own (tests).
 void startWatchdog(double seconds);
 
 // Communication cost of this rank so far: seconds spent in calls and bytes sent.

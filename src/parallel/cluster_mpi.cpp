@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/output_files.h"
 #include "parallel/cluster.h"
+#include "parallel/heartbeat.h"
 
 namespace pvrt::cluster {
 
@@ -132,19 +134,80 @@ char processState(int pid) {
   return close && close[1] == ' ' ? close[2] : 0;
 }
 
+// The ring of heartbeats between nodes (parallel/heartbeat.h); collective over all ranks,
+// `first` for the first rank of each node.
+void startHeartbeats(double seconds, bool first) {
+  struct Card {
+    int32_t rank = 0, pid = 0, port = 0, inRing = 0;
+    char host[128] = {};
+  };
+  auto socket = std::make_shared<heartbeat::Socket>();
+  Card mine;
+  mine.rank = rank();
+  mine.pid = int32_t(::getpid());
+  mine.inRing = seconds > 0 && first && socket->ok();
+  mine.port = socket->port();
+  std::snprintf(mine.host, sizeof mine.host, "%s", heartbeat::hostName().c_str());
+  std::vector<Card> cards(static_cast<size_t>(size()));
+  check(MPI_Allgather(&mine, sizeof(Card), MPI_BYTE, cards.data(), sizeof(Card), MPI_BYTE, MPI_COMM_WORLD),
+        "MPI_Allgather");
+  if (!mine.inRing) return;
+  std::vector<size_t> ring;  // the first ranks of the nodes, in rank order
+  for (size_t i = 0; i < cards.size(); ++i)
+    if (cards[i].inRing) ring.push_back(i);
+  if (ring.size() < 2) return;
+  const size_t at = size_t(std::find(ring.begin(), ring.end(), size_t(mine.rank)) - ring.begin());
+  const Card& next = cards[ring[(at + 1) % ring.size()]];
+  const Card watched = cards[ring[(at + ring.size() - 1) % ring.size()]];
+  if (!socket->aim(next.host, uint16_t(next.port)))
+    std::fprintf(stderr, "pvrt: warning: rank %d cannot resolve the host name '%s' of rank %d: a stop of rank %d "
+                 "goes unnoticed\n", mine.rank, next.host, next.rank, next.rank);
+  std::thread([socket, seconds, me = mine.rank, watched] {
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point heard = Clock::now(), last = heard;
+    for (;;) {
+      socket->send(me);
+      const Clock::time_point until = Clock::now() + std::chrono::milliseconds(100);
+      for (Clock::time_point t = Clock::now(); t < until; t = Clock::now()) {
+        const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(until - t).count();
+        if (socket->receive(int(std::max<long>(1, long(ms)))) == watched.rank) heard = Clock::now();
+      }
+      const Clock::time_point now = Clock::now();
+      // Far more than 100 ms since the last look: this rank was stopped itself.
+      if (now - last > std::chrono::seconds(1)) heard = now;
+      last = now;
+      // The last heartbeat came up to one period before the stop: the silence must be the
+      // timeout and a period, for the stop itself to have lasted the timeout.
+      if (std::chrono::duration<double>(now - heard).count() < seconds + 0.1) continue;
+      std::fprintf(stderr,
+                   "pvrt: error: rank %d (pid %d on %s) has sent no heartbeat for %g s (stopped, or its node cut "
+                   "off); ending the job (--mpi-timeout %g)\n",
+                   watched.rank, watched.pid, watched.host, seconds, seconds);
+      std::fflush(stderr);
+      removeStagedFilesNow();  // rank 0's temporaries: _exit runs no destructors
+      _exit(int(ExitCode::Stalled));
+    }
+  }).detach();
+}
+
 }  // namespace
 
 void startWatchdog(double seconds) {
   MPI_Comm node;
   check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node), "MPI_Comm_split_type");
-  int n = 1;
+  int n = 1, nodeRank = 0;
   MPI_Comm_size(node, &n);
+  MPI_Comm_rank(node, &nodeRank);
   const int mine[2] = {rank(), int(::getpid())};
   std::vector<int> all(size_t(2 * n));
   const int rc = MPI_Allgather(mine, 2, MPI_INT, all.data(), 2, MPI_INT, node);
   MPI_Comm_free(&node);
   check(rc, "MPI_Allgather");
-  if (!(seconds > 0) || n < 2) return;
+  // Tests: every rank as if on a node of its own, watched by heartbeats alone.
+  const char* alone = std::getenv("PVRT_WATCHDOG_HEARTBEATS_ONLY");
+  const bool heartbeatsOnly = alone && std::strcmp(alone, "1") == 0;
+  startHeartbeats(seconds, heartbeatsOnly || nodeRank == 0);
+  if (!(seconds > 0) || n < 2 || heartbeatsOnly) return;
   std::thread([seconds, all, n, me = mine[0]] {
     using Clock = std::chrono::steady_clock;
     std::vector<Clock::time_point> stoppedSince(static_cast<size_t>(n), Clock::time_point{});

@@ -53,7 +53,9 @@ foreach(sig INT TERM USR1)
   set_tests_properties(mpi.interrupt.${sig} PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)
 endforeach()
 add_test(NAME mpi.stopped_rank COMMAND ${PVRT_MPI_CHECK} stopped ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
-set_tests_properties(mpi.stopped_rank PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)
+add_test(NAME mpi.stopped_rank.remote
+  COMMAND ${PVRT_MPI_CHECK} stopped ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} remote)
+set_tests_properties(mpi.stopped_rank mpi.stopped_rank.remote PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)
 
 # A render region under mpirun (3 ranks, every strategy): the whole image's pixels, cut out.
 add_test(NAME mpi.region COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/region_check.sh $<TARGET_FILE:pvrt> ${PVRT_MPI_SCENE}

@@ -15,9 +15,10 @@
 #       SIGNAL (INT, TERM or USR1) to mpirun mid-render ends the job within 3 s; an existing
 #       output is left as it was, no saved scene and no temporary appear; USR1, which mpirun
 #       forwards, ends it with 130 (on INT and TERM Open MPI's mpirun exits 1 itself)
-#   mpi_check.sh stopped BUILD SCENE
+#   mpi_check.sh stopped BUILD SCENE [remote]
 #       a rank stopped with SIGSTOP ends the job (exit 75, one message) once --mpi-timeout
-#       (2 s here) has passed, instead of hanging
+#       (2 s here) has passed, instead of hanging; `remote`: 3 ranks, each as if on a node of
+#       its own (PVRT_WATCHDOG_HEARTBEATS_ONLY=1), so that only the heartbeats can see it
 #   mpi_check.sh defaults BUILD SCENE NP
 #       without --threads or OMP_NUM_THREADS, NP ranks on this node divide its CPUs: each
 #       has max(1, CPUs / NP) threads, never a thread per CPU each
@@ -86,7 +87,13 @@ interrupt)
   exit $fail
   ;;
 stopped)
-  "${mpirun[@]}" -np 2 "$pvrt" render "$scene" -o "$work/out.png" --backend mpi --threads 1 --mpi-timeout 2 \
+  np=2 message='has been stopped for 2 s; ending the job'
+  if [ "${1:-}" = remote ]; then
+    export PVRT_WATCHDOG_HEARTBEATS_ONLY=1
+    mpirun+=(-x PVRT_WATCHDOG_HEARTBEATS_ONLY)
+    np=3 message='rank 1 (pid [0-9]* on .*) has sent no heartbeat for 2 s'
+  fi
+  "${mpirun[@]}" -np $np "$pvrt" render "$scene" -o "$work/out.png" --backend mpi --threads 1 --mpi-timeout 2 \
     -W 4000 -H 2500 --spp 16 --quiet 2>"$work/err" &
   pid=$!
   sleep 4
@@ -105,7 +112,7 @@ stopped)
   fail=0
   [ $rc -eq 75 ] || { echo "exit $rc, expected 75"; fail=1; }
   [ $ms -ge 2000 ] && [ $ms -le 6000 ] || { echo "ended after $ms ms, expected 2-6 s (--mpi-timeout 2)"; fail=1; }
-  [ "$(grep -c 'has been stopped for 2 s; ending the job' "$work/err")" -eq 1 ] || { echo "expected the message once"; fail=1; }
+  [ "$(grep -c "$message" "$work/err")" -eq 1 ] || { echo "expected the message once: $message"; fail=1; }
   [ -z "$(ls -A "$work" | grep -v '^err$')" ] || { echo "left behind: $(ls -A "$work")"; fail=1; }
   exit $fail
   ;;
