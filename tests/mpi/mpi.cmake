@@ -52,6 +52,11 @@ foreach(sig INT TERM USR1)
   add_test(NAME mpi.interrupt.${sig} COMMAND ${PVRT_MPI_CHECK} interrupt ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} ${sig})
   set_tests_properties(mpi.interrupt.${sig} PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)
 endforeach()
+foreach(sig INT TERM)
+  add_test(NAME mpi.interrupt.wrapper.${sig}
+    COMMAND ${PVRT_MPI_CHECK} interrupt ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} ${sig} wrapper)
+  set_tests_properties(mpi.interrupt.wrapper.${sig} PROPERTIES LABELS mpi TIMEOUT 60 RUN_SERIAL TRUE)
+endforeach()
 add_test(NAME mpi.stopped_rank COMMAND ${PVRT_MPI_CHECK} stopped ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE})
 add_test(NAME mpi.stopped_rank.remote
   COMMAND ${PVRT_MPI_CHECK} stopped ${PROJECT_BINARY_DIR} ${PVRT_MPI_SCENE} remote)

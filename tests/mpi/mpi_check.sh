@@ -15,6 +15,9 @@
 #       SIGNAL (INT, TERM or USR1) to mpirun mid-render ends the job within 3 s; an existing
 #       output is left as it was, no saved scene and no temporary appear; USR1, which mpirun
 #       forwards, ends it with 130 (on INT and TERM Open MPI's mpirun exits 1 itself)
+#   mpi_check.sh interrupt BUILD SCENE SIGNAL wrapper
+#       the same through tools/pvrt-mpirun, the signal sent to its process group as Ctrl-C
+#       would: 130 for INT, 143 for TERM
 #   mpi_check.sh stopped BUILD SCENE [remote]
 #       a rank stopped with SIGSTOP ends the job (exit 75, one message) once --mpi-timeout
 #       (2 s here) has passed, instead of hanging; `remote`: 3 ranks, each as if on a node of
@@ -65,22 +68,31 @@ failure)
   [ -z "$(ls -A "$work" | grep -v '^err$')" ] || { echo "left behind: $(ls -A "$work")"; exit 1; }
   ;;
 interrupt)
-  sig=$1
+  sig=$1 via=${2:-mpirun}
   mkdir "$work/out" && echo "existing" >"$work/out/out.png"
-  "${mpirun[@]}" -np 2 "$pvrt" render "$scene" -o "$work/out/out.png" --save-scene "$work/out/saved.xml" \
+  launcher=("${mpirun[@]}")
+  # tools/pvrt-mpirun, started as a shell starts a command in the foreground (job control: it
+  # gets its own process group and SIGINT is not ignored); the signal goes to that whole
+  # group, as Ctrl-C at a terminal would send it.
+  [ "$via" = wrapper ] && launcher=("$(dirname "$0")/../../tools/pvrt-mpirun" "${mpirun[@]:1}") && set -m
+  "${launcher[@]}" -np 2 "$pvrt" render "$scene" -o "$work/out/out.png" --save-scene "$work/out/saved.xml" \
     --backend mpi --threads 1 -W 4000 -H 2500 --spp 16 --quiet 2>"$work/err" &
   pid=$!
+  set +m
+  target=$pid
+  [ "$via" = wrapper ] && target=-$pid
   sleep 4  # started and rendering
   t0=$(date +%s%N)
-  kill -"$sig" $pid
+  kill -"$sig" -- $target
   wait $pid
   rc=$? ms=$((($(date +%s%N) - t0) / 1000000))
-  echo "SIG$sig to mpirun: exit $rc after $ms ms"
+  echo "SIG$sig to $via: exit $rc after $ms ms"
   cat "$work/err"
   fail=0
   [ $ms -le 3000 ] || { echo "took $ms ms to end"; fail=1; }
   want=1
   [ "$sig" = USR1 ] && want=130
+  [ "$via" = wrapper ] && want=$((128 + $(kill -l "$sig")))
   [ $rc -eq $want ] || { echo "exit $rc, expected $want"; fail=1; }
   [ "$(cat "$work/out/out.png")" = existing ] || { echo "the existing output was changed"; fail=1; }
   [ "$(ls -A "$work/out")" = out.png ] || { echo "left behind: $(ls -A "$work/out")"; fail=1; }
