@@ -18,8 +18,13 @@
 
 namespace pvrt {
 
+// The most primitives a leaf of the SAH tree holds, and of a cheaper tree (Bvh's leafSize).
+inline constexpr uint32_t kBvhLeafSize = 4;
+inline constexpr uint32_t kBvhMaxLeafSize = 255;  // BvhNode::count
+
 struct BvhStats {
   uint64_t nodes = 0;   // wide nodes
+  uint32_t leafSize = kBvhLeafSize;  // what it was built with
   uint64_t leaves = 0;  // leaf children (runs of at most four primitives)
   int maxDepth = 0;     // in wide nodes, counting a leaf as a level
   uint64_t bytes = 0;
@@ -69,9 +74,12 @@ class Bvh {
   Bvh() = default;
   // Takes the primitives and reorders them for locality. The build uses up to
   // `buildThreads` threads (0: threadBudget()); the tree is the same whatever the number.
-  explicit Bvh(PrimitiveStore primitives, unsigned buildThreads = 0);
-  explicit Bvh(std::vector<Primitive> primitives, unsigned buildThreads = 0)
-      : Bvh(PrimitiveStore(std::move(primitives)), buildThreads) {}
+  // `leafSize` above kBvhLeafSize (up to kBvhMaxLeafSize) makes a cheaper tree: every node of
+  // that many primitives or fewer is a leaf, so there are far fewer nodes (for a memory
+  // limit the SAH's tree does not fit in), and rays test more primitives.
+  explicit Bvh(PrimitiveStore primitives, unsigned buildThreads = 0, uint32_t leafSize = kBvhLeafSize);
+  explicit Bvh(std::vector<Primitive> primitives, unsigned buildThreads = 0, uint32_t leafSize = kBvhLeafSize)
+      : Bvh(PrimitiveStore(std::move(primitives)), buildThreads, leafSize) {}
 
   // The primitives, bounded ones first in the leaves' order, then the unbounded ones.
   size_t size() const { return items_.size(); }
@@ -80,6 +88,8 @@ class Bvh {
   // tests and tools; the queries below read the records).
   Primitive primitive(uint32_t i) const;
   const BvhStats& stats() const { return stats_; }
+  // Gives the primitives back (in the tree's order), leaving this empty: to build again.
+  PrimitiveStore release() &&;
   const std::vector<BvhNode>& nodes() const { return nodes_; }
 
   // What shading needs of primitive i (0 <= i < size()), read from its compact record where

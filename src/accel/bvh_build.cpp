@@ -30,7 +30,7 @@ namespace pvrt {
 namespace {
 
 constexpr int kBins = 16;
-constexpr int kMaxLeafSize = 4;
+constexpr uint32_t kMaxLeafSize = kBvhLeafSize;  // the SAH's largest leaf
 constexpr int kMaxSahDepth = 48;  // beyond it, median splits bound the depth (stack of 64)
 constexpr double kTraversalCost = 1.0;  // relative to one primitive test
 constexpr double kIntersectionCost = 1.0;
@@ -250,7 +250,10 @@ namespace {
 // partitioned at the cheapest split between bins (`best`).
 enum class Cut { Leaf, Half, Partition };
 
-Cut choose(const Bins& bins, const Binning& binning, const Bounds& bounds, uint32_t count, BinSplit& best) {
+Cut choose(const Bins& bins, const Binning& binning, const Bounds& bounds, uint32_t count, uint32_t leafSize,
+           BinSplit& best) {
+  // A cheaper tree (Bvh's leafSize above the SAH's): every node that small is a leaf.
+  if (leafSize > kMaxLeafSize && count <= leafSize) return Cut::Leaf;
   best = cheapest(bins, binning);
   // All centroids coincide: split in the middle if the leaf would be too big.
   if (best.axis < 0) return count <= kMaxLeafSize ? Cut::Leaf : Cut::Half;
@@ -262,8 +265,8 @@ Cut choose(const Bins& bins, const Binning& binning, const Bounds& bounds, uint3
 
 // Where median splits cut a node at depth kMaxSahDepth or more (having reordered its items),
 // or `end` to make it a leaf.
-uint32_t median(BuildItem* items, uint32_t begin, uint32_t end, const Bounds& centroids) {
-  if (end - begin <= kMaxLeafSize) return end;
+uint32_t median(BuildItem* items, uint32_t begin, uint32_t end, const Bounds& centroids, uint32_t leafSize) {
+  if (end - begin <= std::max(leafSize, kMaxLeafSize)) return end;
   const int axis = centroids.longestAxis();
   const uint32_t mid = begin + (end - begin) / 2;
   std::nth_element(items + begin, items + mid, items + end,
@@ -287,8 +290,8 @@ class TopLevels {
     int32_t child[2] = {-1, -1};  // into nodes(); -1: a subtree of fewer than `shared` items
   };
 
-  TopLevels(BuildItem* items, uint32_t count, uint32_t shared, int threads)
-      : items_(items), shared_(shared), threads_(threads), binOf_{RawArray<uint8_t>(count), RawArray<uint8_t>(count),
+  TopLevels(BuildItem* items, uint32_t count, uint32_t shared, int threads, uint32_t leafSize)
+      : items_(items), shared_(shared), threads_(threads), leafSize_(leafSize), binOf_{RawArray<uint8_t>(count), RawArray<uint8_t>(count),
                                                                   RawArray<uint8_t>(count)},
         scratch_(count) {
     nodes_.push_back({0, count, 1, {}});
@@ -350,14 +353,14 @@ class TopLevels {
     for (uint32_t k = 0; k < level.size(); ++k) {
       Node& n = nodes_[level[k]];
       if (n.depth >= kMaxSahDepth) {
-        n.mid = median(items_, n.begin, n.end, centroids[k]);
+        n.mid = median(items_, n.begin, n.end, centroids[k], leafSize_);
         cut[k] = Cut::Leaf;  // decided already
         continue;
       }
       const auto [first, last] = pieceRange(k);
       Bins all = bins[first];
       for (size_t p = first + 1; p < last; ++p) all.merge(bins[p]);
-      cut[k] = choose(all, binnings[k], n.bounds, n.end - n.begin, best[k]);
+      cut[k] = choose(all, binnings[k], n.bounds, n.end - n.begin, leafSize_, best[k]);
       if (cut[k] == Cut::Leaf) n.mid = n.end;
       if (cut[k] == Cut::Half) n.mid = n.begin + (n.end - n.begin) / 2;
       if (cut[k] != Cut::Partition) continue;
@@ -449,6 +452,7 @@ class TopLevels {
   BuildItem* items_;
   uint32_t shared_;
   int threads_;
+  uint32_t leafSize_;
   std::vector<Node> nodes_;
   RawArray<uint8_t> binOf_[3];  // item i's bin along each axis in its node's binning
   RawArray<uint32_t> scratch_;
@@ -460,8 +464,8 @@ class TopLevels {
 // takes (the collapse follows the children, never the slots).
 class Builder {
  public:
-  Builder(RawArray<BuildItem>& items, RawArray<BuildNode>& nodes, int threads)
-      : items_(items), nodes_(nodes), threads_(threads) {}
+  Builder(RawArray<BuildItem>& items, RawArray<BuildNode>& nodes, int threads, uint32_t leafSize)
+      : items_(items), nodes_(nodes), threads_(threads), leafSize_(leafSize) {}
 
   // Returns the number of nodes made.
   uint32_t build() {
@@ -472,7 +476,7 @@ class Builder {
       subtree(0, n, 1, next);
       return next;
     }
-    const TopLevels top(items_.begin(), n, shared, threads_);
+    const TopLevels top(items_.begin(), n, shared, threads_, leafSize_);
     std::vector<Pending> pending;
     place(top.nodes(), 0, next, pending);
     // The biggest first, so that no thread is left with a big one at the end.
@@ -531,11 +535,11 @@ class Builder {
     const uint32_t count = end - begin;
     uint32_t mid = end;
     if (count > 1 && depth >= kMaxSahDepth) {
-      mid = median(items_.begin(), begin, end, centroids);
+      mid = median(items_.begin(), begin, end, centroids, leafSize_);
     } else if (count > 1) {
       const Binning binning(centroids);
       BinSplit best;
-      const Cut cut = choose(passes.bins(begin, end, binning), binning, bounds, count, best);
+      const Cut cut = choose(passes.bins(begin, end, binning), binning, bounds, count, leafSize_, best);
       if (cut == Cut::Half) mid = begin + count / 2;
       if (cut == Cut::Partition) {
         mid = passes.partition(begin, end, [&](const BuildItem& it) { return binning.bin(it, best.axis) <= best.bin; });
@@ -556,6 +560,7 @@ class Builder {
   RawArray<BuildItem>& items_;
   RawArray<BuildNode>& nodes_;
   int threads_;
+  uint32_t leafSize_;
   std::vector<uint32_t> shared_;
 };
 
@@ -753,8 +758,10 @@ void BvhNode::setChild(int slot, const Bounds& b, uint32_t index, uint8_t leafCo
   used = uint8_t(std::max(int(used), slot + 1));
 }
 
-Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads) {
+Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads, uint32_t leafSize) {
   const auto start = std::chrono::steady_clock::now();
+  leafSize = std::clamp<uint32_t>(leafSize, kBvhLeafSize, kBvhMaxLeafSize);
+  stats_.leafSize = leafSize;
   const int threads = buildThreads > 0 ? int(buildThreads) : threadBudget();
   const uint32_t total = uint32_t(primitives.size());
   // The bounded primitives' items, in primitive order: each block's are counted, then written
@@ -783,7 +790,7 @@ Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads) {
   if (alone) items.shrink(total - uint32_t(unbounded[0].size()));
   if (items.size() > 0) {
     RawArray<BuildNode> binary(2 * items.size() - 1);
-    Builder builder(items, binary, threads);
+    Builder builder(items, binary, threads, leafSize);
     const uint32_t made = builder.build();
     interrupt::check();
     nodes_.reserve(made / 2 + 1);  // a wide node takes at least one of the binary interior ones
@@ -809,6 +816,14 @@ Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads) {
   for (const Primitive& p : others_)
     if (p.transform) stats_.bytes += sizeof(Transform);  // an upper bound: primitives may share one
   stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+PrimitiveStore Bvh::release() && {
+  PrimitiveStore store;
+  store.records = std::move(items_);
+  store.others = std::move(others_);
+  *this = Bvh();
+  return store;
 }
 
 // The shapes of the Kind::Other records put in their records' order, for locality: a leaf's

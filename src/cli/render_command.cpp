@@ -151,6 +151,10 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   const BvhStats& b = scene.bvh.stats();
   fmt::print("  BVH                   {} nodes, {} leaves, depth {}, {:.1f} KiB, built in {:.4f} s\n", b.nodes,
              b.leaves, b.maxDepth, double(b.bytes) / 1024.0, b.buildSeconds);
+  if (b.leafSize > kBvhLeafSize)
+    fmt::print("  BVH leaves            up to {} primitives (a cheaper tree, for the memory limit of {}){}\n",
+               b.leafSize, formatBytes(scene.memoryLimit),
+               b.bytes > scene.memoryLimit ? "; still over it: the primitives alone take more" : "");
   const auto [buffers, entries, bytes, cells] = lightBufferTotals(scene);
   if (buffers > 0)
     fmt::print("  Light buffers         {} (up to {}x{} cells a face), {} entries, {:.1f} KiB ({:.0f} bytes a "

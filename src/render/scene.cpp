@@ -314,6 +314,13 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   interrupt::check();
   std::vector<double>().swap(objectSizes);
   s.bvh = Bvh(std::move(store));
+  // Over the memory limit: the tree again with bigger leaves (far fewer nodes) until it fits
+  // or the leaves are as big as they go; the primitives' own records are the floor.
+  for (uint32_t leaf = 16; s.bvh.stats().bytes > options.memoryLimit && s.bvh.stats().leafSize < kBvhMaxLeafSize;
+       leaf = std::min(4 * leaf, kBvhMaxLeafSize)) {
+    s.bvh = Bvh(std::move(s.bvh).release(), 0, leaf);
+    interrupt::check();
+  }
   buildLightBuffers(s, options.memoryLimit, !options.memoryLimitGiven);
   interrupt::check();
   return s;

@@ -69,8 +69,10 @@ struct Scene {
 
 struct BuildOptions {
   // Bytes the BVH and the light buffers may take together (core/memory_limit.h): the BVH is
-  // always built; the light buffers take what it leaves, in light order, and the lights
-  // beyond it get none (their shadow segments walk the BVH: the same image bits).
+  // always built, with leaves of up to 16, 64 or 255 primitives instead of 4 when the usual
+  // tree would not fit (far fewer nodes; the same image bits, slower rays); the light buffers
+  // take what it leaves, in light order, and the lights beyond it get none (their shadow
+  // segments walk the BVH: the same image bits).
   size_t memoryLimit = defaultMemoryLimit();
   // Whether memoryLimit was chosen by the user (`--memory-limit`). When it was not, the light
   // buffers also take at most a share of memory that grows with the scene (see

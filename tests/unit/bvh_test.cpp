@@ -100,8 +100,10 @@ Found viaBvh(const Bvh& bvh, const Ray& r, double tMin, double tMax, uint64_t& t
 }
 
 // Compares BVH and brute force on `rays` random rays; returns how many hit something.
-int compareOnRandomRays(const std::vector<Primitive>& prims, SceneMaker& gen, int rays, double half) {
-  const Bvh bvh(prims);
+int compareOnRandomRays(const std::vector<Primitive>& prims, SceneMaker& gen, int rays, double half,
+                        uint32_t leafSize = kBvhLeafSize) {
+  const Bvh bvh(prims, 0, leafSize);
+  EXPECT_EQ(bvh.stats().leafSize, leafSize);
   int hits = 0;
   uint64_t tests = 0;
   for (int i = 0; i < rays; ++i) {
@@ -127,6 +129,27 @@ TEST(Bvh, ClosestMatchesBruteForceOnRandomSpheres) {
   // The test means something only if many rays hit and some miss.
   EXPECT_GT(hits, 1000);
   EXPECT_LT(hits, 5000);
+}
+
+// The cheaper trees (leaves of up to 16, 64, 255 primitives: a memory limit) answer every
+// ray as the SAH's tree does, with fewer nodes and bytes.
+TEST(Bvh, CheaperTreesAnswerTheSame) {
+  SceneMaker gen(0x5eed'0011);
+  const auto prims = gen.spheres(3000, 10, 0.05, 0.5);
+  uint64_t nodes = Bvh(prims).stats().nodes, bytes = Bvh(prims).stats().bytes;
+  for (uint32_t leaf : {16u, 64u, 255u}) {
+    SceneMaker rays(0x5eed'0012);
+    EXPECT_GT(compareOnRandomRays(prims, rays, 2000, 12, leaf), 300) << leaf;
+    const Bvh cheap(prims, 0, leaf);
+    EXPECT_LT(cheap.stats().nodes, nodes) << leaf;
+    EXPECT_LT(cheap.stats().bytes, bytes) << leaf;
+    nodes = cheap.stats().nodes;
+    bytes = cheap.stats().bytes;
+  }
+  // The same tree whatever the number of threads.
+  const Bvh one(prims, 1, 64), two(prims, 2, 64);
+  ASSERT_EQ(one.nodes().size(), two.nodes().size());
+  for (uint32_t i = 0; i < one.size(); ++i) EXPECT_EQ(one.primitive(i).object, two.primitive(i).object);
 }
 
 // Sizes around the leaf size and tiny scenes exercise the build's edge cases.

@@ -509,6 +509,40 @@ TEST(LightBuffer, EveryRepositorySceneRendersTheSameWithoutBuffers) {
   EXPECT_GT(buffered, 40);
 }
 
+// A memory limit below the BVH's bytes gets a cheaper tree (bigger leaves, far fewer nodes)
+// that fits when the primitives' records leave room for any nodes, and the same image.
+TEST(LightBuffer, AMemoryLimitBelowTheTreeBuildsACheaperOne) {
+  GenerateOptions g;
+  g.spheres = 3000;
+  g.lights = 3;
+  const SceneDesc desc = generateScene(g);
+  const Scene full = buildScene(desc, {SIZE_MAX, true});
+  ASSERT_EQ(full.bvh.stats().leafSize, kBvhLeafSize);
+  const size_t fullBytes = full.bvh.stats().bytes, records = full.bvh.size() * sizeof(PrimitiveRecord);
+  ASSERT_GT(fullBytes, records + 4096);
+  RenderSettings s;
+  s.width = 48;
+  s.height = 30;
+  s.sampler.samplesPerPixel = 4;
+  s.sampler.kind = SamplerKind::Jitter;
+  const Image::Pixels want = render(full, s).image.data();
+  uint32_t previousLeaf = kBvhLeafSize;
+  for (size_t limit : {fullBytes - 1, (fullBytes + records) / 2, records + 1, size_t(0)}) {
+    const Scene cheap = buildScene(desc, {limit, true});
+    const BvhStats& b = cheap.bvh.stats();
+    EXPECT_GT(b.leafSize, kBvhLeafSize) << limit;
+    EXPECT_GE(b.leafSize, previousLeaf) << limit;  // less memory, never a dearer tree
+    previousLeaf = b.leafSize;
+    if (b.leafSize < kBvhMaxLeafSize) {
+      EXPECT_LE(b.bytes, limit);
+    }
+    EXPECT_LT(b.bytes, fullBytes) << limit;
+    EXPECT_LT(b.nodes, full.bvh.stats().nodes) << limit;
+    EXPECT_EQ(render(cheap, s).image.data(), want) << "limit " << limit << ", leaves of " << b.leafSize;
+  }
+  EXPECT_EQ(previousLeaf, kBvhMaxLeafSize);  // below the records nothing fits: the cheapest tree
+}
+
 // A memory limit leaves the last lights without a buffer, never more than the limit, and
 // never a different image: generated spheres and 40 lights, built under limits from nothing
 // to plenty, rendered at one ray a pixel and at 9, against the scene built without a limit.
