@@ -781,17 +781,19 @@ class Tracer {
     }
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
+    // From the buffer, a see-through answer comes with the walk's first crossing.
     uint32_t blocker = 0;
+    ClosestHit first;
     const Occlusion found =
         buffer ? scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
-                                             stats_.intersectionTests, blocker)
+                                             stats_.intersectionTests, blocker, first)
                : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
-    return orderedTransmittance(origin, dir, dist, inside, buffer, cell);
+    return orderedTransmittance(origin, dir, dist, inside, buffer, cell, buffer ? &first : nullptr);
   }
 
   // The product of the filters of every surface the segment crosses, nearest first, or
@@ -801,9 +803,10 @@ class Tracer {
   // meet (see bufferServes), they are answered from the few primitives of that list that
   // the line can reach (Bvh::shadowCandidates, listed at the first such step) instead of
   // by walks of the tree. `cell`, when not -1, is the buffer's cell of -dir (or of a
-  // direction a few ulps off it).
+  // direction a few ulps off it). `first`, when given, is the first step's answer from
+  // those candidates (Bvh::occlusionToLight found it), used when the buffer serves that step.
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
-                             const LightBuffer* buffer = nullptr, int cell = -1) {
+                             const LightBuffer* buffer = nullptr, int cell = -1, const ClosestHit* first = nullptr) {
     const double tol = scene_.tol.shadow;
     // Every step that bufferServes lets through starts within this of the light's ray, so
     // within twice this of the first such step's line.
@@ -828,8 +831,10 @@ class Tracer {
         }
       }
       const std::optional<ClosestHit> found =
-          serves ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
-                 : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+          serves && first ? *first
+          : serves        ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
+                          : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+      first = nullptr;
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
         return {};
