@@ -11,6 +11,7 @@
 
 #include "core/interrupt.h"
 #include "core/lanes.h"
+#include "core/square_bound.h"
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/shading.h"
@@ -41,7 +42,8 @@ class Tracer {
   };
 
  public:
-  Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
+  Tracer(const Scene& scene, RenderStats& stats)
+      : scene_(scene), stats_(stats), servesSquared_(squareBound(servesBound(scene.tol.shadow))) {}
 
   // A spawned ray's weight as POV-Ray passes it to TraceRay: a float (COLC), compared with
   // adc_bailout (a double) on entry. Rounded here, before the comparison, so that a weight
@@ -466,7 +468,10 @@ class Tracer {
   // from that point to the light) stays within LightBuffer::kMargin of the light's ray, so
   // that the light's buffer may answer it; and how far from the light it then reaches, for a
   // point `dist` from the light.
-  bool bufferServes(double shift) const { return shift <= 0.5 * LightBuffer::kMargin * scene_.tol.shadow; }
+  static double servesBound(double shadowTolerance) { return 0.5 * LightBuffer::kMargin * shadowTolerance; }
+  bool bufferServes(double shift) const { return shift <= servesBound(scene_.tol.shadow); }
+  // bufferServes(length(v)), decided without the square root (core/square_bound.h).
+  bool bufferServesOffset(const Vec3& v) const { return dot(v, v) <= servesSquared_; }
   static double bufferReach(double dist, double shift) { return (dist + shift) * (1 + 1e-9); }
 
   // ComputeReflection: d + n * (-2 d.n), normalised by VNormalizeEq (times 1/length).
@@ -818,7 +823,7 @@ class Tracer {
       bool serves = false;
       if (buffer) {
         const Vec3 fromLight = origin - buffer->light();
-        serves = bufferServes(length(cross(fromLight, dir)));
+        serves = bufferServesOffset(cross(fromLight, dir));
         if (serves && !listed) {
           const double reach = length(fromLight) * (1 + 1e-9);
           if (cell >= 0) {
@@ -907,6 +912,7 @@ class Tracer {
 
   const Scene& scene_;
   RenderStats& stats_;
+  double servesSquared_;  // the largest squared offset whose length bufferServes lets through
   static constexpr uint32_t kNoCache = ~0u;
   // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
   std::optional<ClosestHit> hits_[kMaxPacket];
