@@ -174,6 +174,8 @@ class Scenes:
             # Glass-heavy: the paper's random scene with every sphere glass (refraction and reflection).
             ("glass100", self.generate("glass100", "--spheres", "100", "--lights", "5", "--seed", "3",
                                        "--palette", "0", "0", "0", "1")),
+            # A hand-made room corner: two mirrors, glass and an area light (issue 28).
+            ("mirrors_glass", os.path.join(ROOT, "bench", "scenes", "mirrors_glass.xml")),
         ]
 
     def export(self, name, xml):

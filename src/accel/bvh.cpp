@@ -160,8 +160,41 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, const Ray& ray, doubl
 
 Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray& ray, double tMin, double tMax,
                                 double reach, uint64_t& tests, uint32_t& blocker) const {
+  return occlusionInCell<false>(buffer, index, ray, tMin, tMax, reach, tests, blocker, nullptr);
+}
+
+Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray& ray, double tMin, double tMax,
+                                double reach, uint64_t& tests, uint32_t& blocker, ClosestHit& nearest) const {
+  return occlusionInCell<true>(buffer, index, ray, tMin, tMax, reach, tests, blocker, &nearest);
+}
+
+template <bool kNoteNearest>
+Occlusion Bvh::occlusionInCell(const LightBuffer& buffer, int index, const Ray& ray, double tMin, double tMax,
+                               double reach, uint64_t& tests, uint32_t& blocker, ClosestHit* nearest) const {
   const std::span<const LightBuffer::Entry> cell = buffer.list(index);
   bool transparent = false;
+  // The nearest see-through hit (kNoteNearest): the first of equals in the order closestAmong
+  // tests them, which puts the unbounded primitives first, so theirs is kept apart.
+  double bestT = INFINITY, unboundedT = INFINITY;
+  ClosestHit best, unbounded;
+  auto test = [&](uint32_t i, double& nearestT, ClosestHit& hit) {
+    if constexpr (!kNoteNearest) {
+      return blocks(i, ray, tMin, tMax, tests, transparent, blocker);
+    } else {
+      const PrimitiveRecord& p = items_[i];
+      if (p.noShadow) return false;
+      ++tests;
+      const std::optional<ShapeHit> h = intersectItem(i, ray, tMin, tMax);
+      if (!h) return false;
+      if (p.opaque) {
+        blocker = i;
+        return true;
+      }
+      transparent = true;
+      if (h->t < nearestT) nearestT = h->t, hit = {*h, i};
+      return false;
+    }
+  };
   // In a big scene the leaf records of a list's entries lie far apart in memory: each is
   // fetched kAhead entries before its test, so that several fetches are under way at once
   // instead of one after another. Entries past `reach` are never tested, nor fetched.
@@ -174,12 +207,15 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray&
     const LightBuffer::Entry& e = cell[k];
     if (e.near > reach) break;
     fetch(k + kAhead);
-    if (blocks(e.primitive, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
+    if (test(e.primitive, bestT, best)) return Occlusion::Blocked;
   }
   for (uint32_t i : buffer.everywhere())
-    if (blocks(i, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
+    if (test(i, bestT, best)) return Occlusion::Blocked;
   for (uint32_t i = boundedCount_; i < items_.size(); ++i)
-    if (blocks(i, ray, tMin, tMax, tests, transparent, blocker)) return Occlusion::Blocked;
+    if (test(i, unboundedT, unbounded)) return Occlusion::Blocked;
+  if constexpr (kNoteNearest) {
+    if (transparent) *nearest = unboundedT <= bestT ? unbounded : best;
+  }
   return transparent ? Occlusion::Transparent : Occlusion::Clear;
 }
 

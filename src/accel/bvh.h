@@ -148,6 +148,12 @@ class Bvh {
   // light's ray along u (-ray.dir itself, or one a few ulps off it).
   Occlusion occlusionToLight(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
                              double reach, uint64_t& tests, uint32_t& blocker) const;
+  // The same, and when the answer is Transparent, the nearest see-through hit in `nearest`:
+  // every candidate shadowCandidates would list for the segment has been tested, so this is
+  // closestAmong's answer for it, the first step of its see-through walk, ties included
+  // (unbounded primitives first, then the cell's list in order, then the everywhere ones).
+  Occlusion occlusionToLight(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
+                             double reach, uint64_t& tests, uint32_t& blocker, ClosestHit& nearest) const;
   // For a walk of shadow segments along one line toward `buffer`'s light (see-through
   // surfaces crossed one by one, each segment starting where the last one stopped): the
   // shadow-casting primitives any of them may meet. Each segment must meet
@@ -192,6 +198,9 @@ class Bvh {
                              uint64_t& tests) const;
 
  private:
+  template <bool kNoteNearest>
+  Occlusion occlusionInCell(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
+                            double reach, uint64_t& tests, uint32_t& blocker, ClosestHit* nearest) const;
   template <class Enters, class Leaf>
   void traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const;
   // The shadow queries' test of primitive i: true when it is opaque and hit in (tMin, tMax)

@@ -11,6 +11,7 @@
 
 #include "core/interrupt.h"
 #include "core/lanes.h"
+#include "core/square_bound.h"
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/shading.h"
@@ -41,7 +42,8 @@ class Tracer {
   };
 
  public:
-  Tracer(const Scene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
+  Tracer(const Scene& scene, RenderStats& stats)
+      : scene_(scene), stats_(stats), servesSquared_(squareBound(servesBound(scene.tol.shadow))) {}
 
   // A spawned ray's weight as POV-Ray passes it to TraceRay: a float (COLC), compared with
   // adc_bailout (a double) on entry. Rounded here, before the comparison, so that a weight
@@ -466,7 +468,10 @@ class Tracer {
   // from that point to the light) stays within LightBuffer::kMargin of the light's ray, so
   // that the light's buffer may answer it; and how far from the light it then reaches, for a
   // point `dist` from the light.
-  bool bufferServes(double shift) const { return shift <= 0.5 * LightBuffer::kMargin * scene_.tol.shadow; }
+  static double servesBound(double shadowTolerance) { return 0.5 * LightBuffer::kMargin * shadowTolerance; }
+  bool bufferServes(double shift) const { return shift <= servesBound(scene_.tol.shadow); }
+  // bufferServes(length(v)), decided without the square root (core/square_bound.h).
+  bool bufferServesOffset(const Vec3& v) const { return dot(v, v) <= servesSquared_; }
   static double bufferReach(double dist, double shift) { return (dist + shift) * (1 + 1e-9); }
 
   // ComputeReflection: d + n * (-2 d.n), normalised by VNormalizeEq (times 1/length).
@@ -781,17 +786,19 @@ class Tracer {
     }
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
+    // From the buffer, a see-through answer comes with the walk's first crossing.
     uint32_t blocker = 0;
+    ClosestHit first;
     const Occlusion found =
         buffer ? scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
-                                             stats_.intersectionTests, blocker)
+                                             stats_.intersectionTests, blocker, first)
                : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
-    return orderedTransmittance(origin, dir, dist, inside, buffer, cell);
+    return orderedTransmittance(origin, dir, dist, inside, buffer, cell, buffer ? &first : nullptr);
   }
 
   // The product of the filters of every surface the segment crosses, nearest first, or
@@ -801,9 +808,10 @@ class Tracer {
   // meet (see bufferServes), they are answered from the few primitives of that list that
   // the line can reach (Bvh::shadowCandidates, listed at the first such step) instead of
   // by walks of the tree. `cell`, when not -1, is the buffer's cell of -dir (or of a
-  // direction a few ulps off it).
+  // direction a few ulps off it). `first`, when given, is the first step's answer from
+  // those candidates (Bvh::occlusionToLight found it), used when the buffer serves that step.
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
-                             const LightBuffer* buffer = nullptr, int cell = -1) {
+                             const LightBuffer* buffer = nullptr, int cell = -1, const ClosestHit* first = nullptr) {
     const double tol = scene_.tol.shadow;
     // Every step that bufferServes lets through starts within this of the light's ray, so
     // within twice this of the first such step's line.
@@ -815,7 +823,7 @@ class Tracer {
       bool serves = false;
       if (buffer) {
         const Vec3 fromLight = origin - buffer->light();
-        serves = bufferServes(length(cross(fromLight, dir)));
+        serves = bufferServesOffset(cross(fromLight, dir));
         if (serves && !listed) {
           const double reach = length(fromLight) * (1 + 1e-9);
           if (cell >= 0) {
@@ -828,8 +836,10 @@ class Tracer {
         }
       }
       const std::optional<ClosestHit> found =
-          serves ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
-                 : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+          serves && first ? *first
+          : serves        ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
+                          : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+      first = nullptr;
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
         return {};
@@ -902,6 +912,7 @@ class Tracer {
 
   const Scene& scene_;
   RenderStats& stats_;
+  double servesSquared_;  // the largest squared offset whose length bufferServes lets through
   static constexpr uint32_t kNoCache = ~0u;
   // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
   std::optional<ClosestHit> hits_[kMaxPacket];

@@ -57,6 +57,9 @@ struct Answer {
   // (as the tracer walks see-through shadows): by the tree's closest query, and among the
   // buffer's candidates for the walk.
   std::vector<ClosestHit> walkViaTree, walkViaBuffer, walkViaCell;
+  // viaCell again, noting the nearest see-through hit (meaningful when Transparent).
+  Occlusion viaCellNoting;
+  ClosestHit noted;
 };
 
 // Up to 8 steps of such a walk from `segment` toward a light `dist` away; `nearest` answers
@@ -94,6 +97,8 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
   EXPECT_GE(cell, 0);
   a.viaCell = bvh.occlusionToLight(buffer, cell, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests,
                                    blocker);
+  a.viaCellNoting = bvh.occlusionToLight(buffer, cell, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9),
+                                         tests, blocker, a.noted);
   a.walkViaTree = walk(segment, dist, [&](const Ray& step, double left) {
     return bvh.closest(step, kTol, left - kTol, tests, /*skipNoShadow=*/true);
   });
@@ -112,7 +117,7 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
 }
 
 void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, Maker& gen, int segments,
-                        int* blocked = nullptr, size_t* crossed = nullptr) {
+                        int* blocked = nullptr, size_t* crossed = nullptr, int* seeThrough = nullptr) {
   const Bvh bvh(prims);
   const LightBuffer buffer(light, bvh.occluders());
   int count = 0;
@@ -133,6 +138,14 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
       EXPECT_EQ(a.walkViaCell[c].primitive, a.walkViaTree[c].primitive) << "segment " << k << " crossing " << c;
       EXPECT_EQ(a.walkViaCell[c].hit.t, a.walkViaTree[c].hit.t) << "segment " << k << " crossing " << c;
     }
+    // A see-through answer notes the walk's first crossing, as its first step finds it.
+    ASSERT_EQ(int(a.viaCellNoting), int(a.viaCell)) << "segment " << k;
+    if (a.viaCell == Occlusion::Transparent) {
+      if (seeThrough) ++*seeThrough;
+      ASSERT_FALSE(a.walkViaCell.empty()) << "segment " << k;
+      EXPECT_EQ(a.noted.primitive, a.walkViaCell[0].primitive) << "segment " << k;
+      EXPECT_EQ(a.noted.hit.t, a.walkViaCell[0].hit.t) << "segment " << k;
+    }
     crossings += a.walkViaTree.size();
     count += a.viaTree == Occlusion::Blocked;
   }
@@ -146,7 +159,9 @@ TEST(LightBuffer, AgreesWithTheTreeForALightOutsideTheScene) {
   const auto prims = gen.scene(3000, 10, 0.1, 0.6);
   int blocked = 0;
   size_t crossed = 0;
-  expectBufferAgrees(prims, {3, 40, -7}, gen, 20000, &blocked, &crossed);
+  int seeThrough = 0;
+  expectBufferAgrees(prims, {3, 40, -7}, gen, 20000, &blocked, &crossed, &seeThrough);
+  EXPECT_GT(seeThrough, 500);  // answers that note their walk's first crossing
   EXPECT_GT(blocked, 2000);
   EXPECT_LT(blocked, 19000);
   EXPECT_GT(crossed, 40000u);  // walks of several steps, as through glass
