@@ -141,12 +141,14 @@ void startHeartbeats(double seconds, bool first) {
     int32_t rank = 0, pid = 0, port = 0, inRing = 0;
     char host[128] = {};
   };
-  auto socket = std::make_shared<heartbeat::Socket>();
+  // Only a node's first rank, and only with a watchdog, opens a socket.
+  std::shared_ptr<heartbeat::Socket> socket;
+  if (seconds > 0 && first) socket = std::make_shared<heartbeat::Socket>();
   Card mine;
   mine.rank = rank();
   mine.pid = int32_t(::getpid());
-  mine.inRing = seconds > 0 && first && socket->ok();
-  mine.port = socket->port();
+  mine.inRing = socket && socket->ok();
+  mine.port = socket ? socket->port() : 0;
   std::snprintf(mine.host, sizeof mine.host, "%s", heartbeat::hostName().c_str());
   std::vector<Card> cards(static_cast<size_t>(size()));
   check(MPI_Allgather(&mine, sizeof(Card), MPI_BYTE, cards.data(), sizeof(Card), MPI_BYTE, MPI_COMM_WORLD),
