@@ -2,11 +2,14 @@
 """How close `pvrt render --time-budget B` comes to B: the table of docs/design.md (issue 27, item 2).
 
     bench/time_budget.py [--pvrt build/pvrt] [--out DIR] [--budgets 2,5,10,30,60] [--threads 1,2]
+                         [--sampler sequence|jitter|pov|grid]
 
 For each budget, scene (paper1, paper2, and 10^5 random spheres from `pvrt generate --spheres 100000
 --lights 5 --seed 7`, all at 1280 x 800) and thread count, one run: the whole process's wall time (start to
 exit, what the budget covers, writing the PNG included) and its user CPU time, the c chosen, the render time
-predicted and taken (from --stats-json). Writes DIR/time_budget.csv and DIR/time_budget.md. The machine's
+predicted and taken (from --stats-json). With the sequence sampler (the default with a budget) the render
+goes in passes (render/passes.h): the table gives their number (no prediction of the whole); with the
+others, the pilots. Writes DIR/time_budget.csv and DIR/time_budget.md. The machine's
 load average is recorded before each run: other programs on the machine take CPU time from pvrt's
 threads, so the wall times hold for that load only.
 """
@@ -22,8 +25,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import pvrt_stats  # noqa: E402
 
-FIELDS = ["budget_s", "scene", "threads", "wall_s", "user_s", "wall_over_budget", "chosen_spp", "pilots",
-          "pilot_s", "predicted_render_s", "render_s", "load_s", "build_s", "write_s", "load_average", "status"]
+FIELDS = ["budget_s", "scene", "threads", "sampler", "wall_s", "user_s", "wall_over_budget", "chosen_spp", "pilots",
+          "pilot_s", "passes", "predicted_render_s", "render_s", "load_s", "build_s", "write_s", "load_average", "status"]
 
 
 def main(argv):
@@ -32,6 +35,7 @@ def main(argv):
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "time-budget-" + time.strftime("%Y%m%d-%H%M%S")))
     ap.add_argument("--budgets", default="2,5,10,30,60")
     ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--sampler", default="", help="--sampler for pvrt (default: none, so sequence and passes)")
     a = ap.parse_args(argv)
     a.pvrt = os.path.abspath(a.pvrt)
     os.makedirs(a.out, exist_ok=True)
@@ -49,6 +53,8 @@ def main(argv):
                 json_path = os.path.join(a.out, "run.json")
                 cmd = [a.pvrt, "render", path, "-o", os.path.join(a.out, "image.png"), "--time-budget", "%g" % budget,
                        "--threads", str(threads), "--quiet", "--stats-json", json_path]
+                if a.sampler:
+                    cmd += ["--sampler", a.sampler]
                 load = os.getloadavg()[0]
                 start = time.perf_counter()
                 p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL)
@@ -58,7 +64,8 @@ def main(argv):
                 st = pvrt_stats.read(json_path) if rc == 0 else {}
                 tb = st.get("time_budget", {})
                 sec = st.get("seconds", {})
-                row = dict(budget_s=budget, scene=scene, threads=threads, wall_s="%.3f" % wall,
+                row = dict(budget_s=budget, scene=scene, threads=threads, sampler=a.sampler or "sequence",
+                           passes=len(tb.get("passes", [])), wall_s="%.3f" % wall,
                            user_s="%.3f" % usage.ru_utime, wall_over_budget="%.3f" % (wall / budget),
                            chosen_spp=tb.get("chosen_spp", ""), pilots=len(tb.get("pilots", [])),
                            pilot_s="%.3f" % tb.get("pilot_seconds", 0),
@@ -74,12 +81,14 @@ def main(argv):
                     w.writeheader()
                     w.writerows(rows)
     with open(os.path.join(a.out, "time_budget.md"), "w") as f:
-        f.write("| budget s | scene | threads | c | wall s | wall / budget | user s | pilots (s) | predicted render s "
-                "| render s | load avg |\n|---|---|---|---|---|---|---|---|---|---|---|\n")
+        f.write("| budget s | scene | threads | c | wall s | wall / budget | user s | passes, or pilots (s) "
+                "| predicted render s | render s | load avg |\n|---|---|---|---|---|---|---|---|---|---|---|\n")
         for r in rows:
-            f.write("| %g | %s | %d | %s | %s | %s | %s | %s (%s) | %s | %s | %s |\n" % (
+            how = "%s passes" % r["passes"] if r["passes"] else "%s (%s)" % (r["pilots"], r["pilot_s"])
+            predicted = r["predicted_render_s"] if not r["passes"] else "-"
+            f.write("| %g | %s | %d | %s | %s | %s | %s | %s | %s | %s | %s |\n" % (
                 r["budget_s"], r["scene"], r["threads"], r["chosen_spp"], r["wall_s"], r["wall_over_budget"],
-                r["user_s"], r["pilots"], r["pilot_s"], r["predicted_render_s"], r["render_s"], r["load_average"]))
+                r["user_s"], how, predicted, r["render_s"], r["load_average"]))
     print("wrote %s and time_budget.md" % csv_path)
     return 0
 

@@ -127,12 +127,23 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
       pilots.push_back({{"spp", p.pilotSamples[i]},
                         {"rays_per_pixel", p.points[i].rays},
                         {"seconds_per_pixel", p.points[i].secondsPerPixel}});
-    j["time_budget"] = {{"chosen_spp", p.samplesPerPixel},
+    j["time_budget"] = {{"method", "pilots"},
+                        {"budget_seconds", run.timeBudget},
+                        {"chosen_spp", p.samplesPerPixel},
                         {"predicted_render_seconds", p.predictedSeconds},
                         {"pilot_seconds", p.pilotSeconds},
                         {"pilot_share", p.pilotShare},
                         {"fits", p.fits},
                         {"pilots", std::move(pilots)}};
+  }
+  if (!r.passes.empty()) {
+    ordered_json passes = ordered_json::array();
+    for (const PassRecord& p : r.passes)
+      passes.push_back({{"first_sample", p.first}, {"end_sample", p.last}, {"seconds", p.seconds}});
+    j["time_budget"] = {{"method", "passes"},
+                        {"budget_seconds", run.timeBudget},
+                        {"chosen_spp", r.passes.back().last},
+                        {"passes", std::move(passes)}};
   }
   // A file name need not be UTF-8: its bytes are replaced rather than refused.
   return j.dump(2, ' ', false, ordered_json::error_handler_t::replace) + "\n";

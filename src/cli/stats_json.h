@@ -16,7 +16,8 @@ struct RunFigures {
   std::string scene, output, backend, gather;  // gather: MPI only
   double loadSeconds = 0, buildSeconds = 0, writeSeconds = 0;
   size_t peakBytes = 0, loadPeakBytes = 0, buildPeakBytes = 0;  // rank 0's under MPI
-  const BudgetPlan* budget = nullptr;                           // with --time-budget
+  const BudgetPlan* budget = nullptr;                           // with --time-budget and pilots
+  double timeBudget = 0;                                        // --time-budget's seconds, or 0
 };
 
 // `ranks` is empty except under MPI (then one entry per rank, with its threads).

@@ -46,7 +46,7 @@ class RankRenderer {
       WorkerStats& ws = perThread_[size_t(worker)];
       const auto start = Clock::now();
       // No load map: no per-pixel work to keep, so neighbouring pixels may share packets.
-      kernel_(scene_, sampler_, rows.items[r], image_, s_.loadMap ? load_.data() : nullptr, ws.counts);
+      kernel_(scene_, sampler_, rows.items[r], image_, s_.loadMap ? load_.data() : nullptr, ws.counts, nullptr);
       ws.seconds += secondsSince(start);
       ws.pixels += rows.items[r].pixels();
     });
@@ -67,11 +67,11 @@ class RankRenderer {
     if (betweenRows) {
       const int g = sampler_.blockGranule();  // rows, or bands of whole POV-Ray blocks
       for (int y = item.y0; y < item.y1; y += g) {
-        kernel_(scene_, sampler_, {item.x0, y, item.x1, std::min(item.y1, y + g)}, image_, load, ws.counts);
+        kernel_(scene_, sampler_, {item.x0, y, item.x1, std::min(item.y1, y + g)}, image_, load, ws.counts, nullptr);
         betweenRows();
       }
     } else {
-      kernel_(scene_, sampler_, item, image_, load, ws.counts);
+      kernel_(scene_, sampler_, item, image_, load, ws.counts, nullptr);
     }
     ws.seconds += secondsSince(start);
     ws.pixels += item.pixels();

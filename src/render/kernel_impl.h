@@ -26,6 +26,29 @@ inline int pixelsPerPacket(size_t raysPerPixel) {
   return k;
 }
 
+// Where a pixel's sum goes: its value in the image, or in a render in passes its sum so
+// far (read back by the next pass; setPixel()'s checks come in finishPasses()).
+class PixelOut {
+ public:
+  PixelOut(Image& image, PassBuffers* pass, RenderStats& stats) : image_(image), pass_(pass), stats_(stats) {}
+  PixelSum start(int x, int y) const {
+    if (!pass_ || !pass_->resume) return {};
+    const float* p = image_.row(y) + size_t(x) * 3;
+    return {p[0], p[1], p[2]};
+  }
+  void finish(int x, int y, const PixelSum& sum, size_t count, bool finite) {
+    if (!pass_) return setPixel(image_, x, y, sum.mean(count), finite, stats_);
+    float* p = image_.row(y) + size_t(x) * 3;
+    p[0] = sum.r, p[1] = sum.g, p[2] = sum.b;
+    if (!finite) pass_->nonFinite[size_t(y) * size_t(image_.width()) + size_t(x)] = 1;
+  }
+
+ private:
+  Image& image_;
+  PassBuffers* pass_;
+  RenderStats& stats_;
+};
+
 // The pixel loop over one rectangle. A pixel with enough rays is traced as packets (its
 // rays share the camera's origin), and a group of pixelsPerPacket() neighbours, the first
 // at a multiple of that in x, as one packet. The groups are fixed by position, so every
@@ -33,66 +56,85 @@ inline int pixelsPerPacket(size_t raysPerPixel) {
 // traces the same packets and counts the same work; one that splits a group traces its
 // pixels alone. A load map needs each pixel's own work, so with one every pixel is traced
 // alone. The image is the same either way: a packet gives each ray the answers it would
-// get alone, and each pixel's colours are summed in the same order.
+// get alone, and each pixel's colours are summed in the same order. A pixel's own packets
+// start at its samples' multiples of kMaxPacket, and its shadow cache restarts where the
+// sampler says (PixelSampler::restartsAt), so that a render in passes traces each sample
+// as one pass would.
 template <EffectSet E>
 void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const WorkItem& rect, Image& image,
-                      float* load, RenderStats& stats) {
+                      float* load, RenderStats& stats, PassBuffers* pass) {
   if (sampler.adaptive()) return renderAdaptiveRect<E>(scene, sampler, rect, image, stats);
   Tracer<E> tracer(scene, stats);
+  PixelOut out(image, pass, stats);
   std::vector<SubSample> offsets;
   std::vector<Ray> rays(kMaxPacket);
   std::vector<Color> colors(kMaxPacket);
   const int w = image.width(), h = image.height();
-  const int group = load ? 1 : pixelsPerPacket(size_t(sampler.count()));
+  const int firstSample = sampler.firstSample(), total = sampler.count();
+  const int group = load ? 1 : pixelsPerPacket(size_t(total - firstSample));
+  // Bit k set where ray k of a packet of one pixel's samples from `from` restarts the cache.
+  auto restarts = [&](int from, int count) {
+    uint64_t bits = 0;
+    for (int k = 0; k < count; ++k)
+      if (sampler.restartsAt(from + k)) bits |= uint64_t(1) << k;
+    return bits;
+  };
   for (int y = rect.y0; y < rect.y1; ++y) {
     for (int x = rect.x0; x < rect.x1; ++x) {
       if (group > 1 && x % group == 0 && x + group <= rect.x1) {
         tracer.beginPixel();
         size_t first[kMaxPacketPixels + 1] = {};  // pixel i's rays are [first[i], first[i + 1])
+        uint64_t starts = 0;
         for (int i = 0; i < group; ++i) {
           sampler.offsets(x + i, y, offsets);
           scene.camera.rays(x + i, y, offsets.data(), int(offsets.size()), w, h, rays.data() + first[i]);
           first[i + 1] = first[i] + offsets.size();
+          starts |= restarts(firstSample, int(offsets.size())) << first[i];
         }
         stats.primaryRays += uint64_t(first[group]);
-        uint64_t starts = 0;
-        for (int i = 0; i < group; ++i) starts |= uint64_t(1) << first[i];
         tracer.setPixelStarts(starts);
         tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
         for (int i = 0; i < group; ++i) {
           Color* c = colors.data() + first[i];
-          const bool finite = finiteSamples(c, first[i + 1] - first[i], stats);
-          setPixel(image, x + i, y, pixelColor(c, first[i + 1] - first[i]), finite, stats);
+          const size_t n = first[i + 1] - first[i];
+          const bool finite = finiteSamples(c, n, stats);
+          PixelSum sum = out.start(x + i, y);
+          for (size_t k = 0; k < n; ++k) sum.add(c[k]);
+          out.finish(x + i, y, sum, size_t(total), finite);
         }
         x += group - 1;
         continue;
       }
       sampler.offsets(x, y, offsets);
-      const size_t n = offsets.size();
+      const int n = int(offsets.size());
       const uint64_t before = stats.work();
-      tracer.beginPixel();
-      if (n < kMinPacket) {
-        for (size_t k = 0; k < n; ++k) {
+      PixelSum sum = out.start(x, y);
+      bool finite = true;
+      if (size_t(n) < kMinPacket) {
+        for (int k = 0; k < n; ++k) {
+          if (sampler.restartsAt(firstSample + k)) tracer.beginPixel();
           ++stats.primaryRays;
-          colors[k] = tracer.trace(scene.camera.ray(x, y, offsets[k].dx, offsets[k].dy, w, h), 0, 1.0,
-                                   scene.cameraInteriors);
+          colors[size_t(k)] = tracer.trace(scene.camera.ray(x, y, offsets[size_t(k)].dx, offsets[size_t(k)].dy, w, h),
+                                           0, 1.0, scene.cameraInteriors);
         }
-        const bool finite = finiteSamples(colors.data(), n, stats);
-        setPixel(image, x, y, pixelColor(colors.data(), n), finite, stats);
+        finite = finiteSamples(colors.data(), size_t(n), stats);
+        for (int k = 0; k < n; ++k) sum.add(colors[size_t(k)]);
       } else {
-        PixelSum sum;
-        bool finite = true;
-        for (size_t first = 0; first < n; first += kMaxPacket) {
-          const int count = int(std::min<size_t>(kMaxPacket, n - first));
-          scene.camera.rays(x, y, offsets.data() + first, count, w, h, rays.data());
+        for (int from = firstSample; from < total;) {
+          const int to = std::min(total, (from / kMaxPacket + 1) * kMaxPacket);
+          const int count = to - from;
+          if (sampler.restartsAt(from)) tracer.beginPixel();
+          tracer.setPixelStarts(restarts(from, count) | 1);
+          scene.camera.rays(x, y, offsets.data() + (from - firstSample), count, w, h, rays.data());
           stats.primaryRays += uint64_t(count);
           tracer.tracePacket(rays.data(), count, scene.cameraInteriors, colors.data());
           finite = finiteSamples(colors.data(), size_t(count), stats) && finite;
-          for (int k = 0; k < count; ++k) sum.add(colors[k]);
+          for (int k = 0; k < count; ++k) sum.add(colors[size_t(k)]);
+          from = to;
         }
-        setPixel(image, x, y, sum.mean(n), finite, stats);
       }
-      if (load) load[size_t(y) * w + x] = float(stats.work() - before);
+      out.finish(x, y, sum, size_t(total), finite);
+      if (load) load[size_t(y) * w + x] += float(stats.work() - before);
     }
   }
 }

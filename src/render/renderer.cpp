@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "render/kernel.h"
+#include "render/pixel_value.h"
 
 namespace pvrt {
 
@@ -64,7 +65,7 @@ class Watchdog {
 
 void renderRect(const Scene& scene, const PixelSampler& sampler, EffectSet effects, const WorkItem& rect,
                 Image& image, float* load, RenderStats& stats) {
-  kernelFor(effects)(scene, sampler, rect, image, load, stats);
+  kernelFor(effects)(scene, sampler, rect, image, load, stats, nullptr);
 }
 
 WorkItem renderArea(const RenderSettings& s) {
@@ -110,8 +111,6 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   // area (or a stride of it), and only those pixels are read.
   result.image = Image::unfilled(settings.width, settings.height);
   if (settings.loadMap) result.load.assign(size_t(settings.width) * settings.height, 0.0f);
-  const PixelSampler sampler(settings.sampler);
-  result.effects = scene.effects | (sampler.count() > 1 ? kSupersampling : 0u);
   const RectKernel kernel = kernelFor(scene.effects);
 
   const int workers = settings.backend == Backend::Serial
@@ -125,25 +124,69 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   }
   result.workers.assign(size_t(workers), WorkerStats{});
 
-  std::atomic<long> done{0};
   std::atomic<bool> cancelled{false};
   long total = 0;
   for (const WorkItem& it : plan.items) total += it.pixels();
-  Watchdog watchdog(settings, done, total, plan.items.size(), workers, t0);
-  parallelFor(settings.backend, workers, plan, [&](size_t i, int worker) {
-    if (interrupt::requested()) {
-      cancelled = true;
-      return;
+  // Every pixel of the plan once, with `sampler`'s samples.
+  auto pass = [&](const PixelSampler& sampler, PassBuffers* buffers) {
+    std::atomic<long> done{0};
+    Watchdog watchdog(settings, done, total, plan.items.size(), workers, t0);
+    parallelFor(settings.backend, workers, plan, [&](size_t i, int worker) {
+      if (interrupt::requested()) {
+        cancelled = true;
+        return;
+      }
+      const WorkItem& item = plan.items[i];
+      WorkerStats& ws = result.workers[size_t(worker)];
+      const auto start = Clock::now();
+      kernel(scene, sampler, item, result.image, settings.loadMap ? result.load.data() : nullptr, ws.counts, buffers);
+      ws.seconds += secondsSince(start);
+      ws.pixels += item.pixels();
+      const long now = done.fetch_add(item.pixels()) + item.pixels();
+      if (worker == 0 && settings.progress) settings.progress(now, total);
+    });
+  };
+
+  int samples = settings.sampler.samplesPerPixel;
+  if (!settings.nextPass) {
+    pass(PixelSampler(settings.sampler), nullptr);
+  } else {
+    PassBuffers buffers;
+    buffers.nonFinite.assign(size_t(settings.width) * size_t(settings.height), 0);
+    PassesSoFar so;
+    for (;;) {
+      so.seconds = secondsSince(t0);
+      const int next = std::min(settings.nextPass(so), settings.sampler.samplesPerPixel);
+      if (next <= so.done || cancelled) break;
+      SamplerSettings window = settings.sampler;
+      window.firstSample = so.done;
+      window.samplesPerPixel = next;
+      const PixelSampler sampler(window);  // checks that the pass starts at a restart point
+      buffers.resume = so.done > 0;
+      const auto start = Clock::now();
+      pass(sampler, &buffers);
+      so.passes.push_back({so.done, next, secondsSince(start)});
+      so.done = next;
     }
-    const WorkItem& item = plan.items[i];
-    WorkerStats& ws = result.workers[size_t(worker)];
-    const auto start = Clock::now();
-    kernel(scene, sampler, item, result.image, settings.loadMap ? result.load.data() : nullptr, ws.counts);
-    ws.seconds += secondsSince(start);
-    ws.pixels += item.pixels();
-    const long now = done.fetch_add(item.pixels()) + item.pixels();
-    if (worker == 0 && settings.progress) settings.progress(now, total);
-  });
+    if (so.done == 0) throw Error(ExitCode::Internal, "a render in passes rendered no sample");
+    samples = so.done;
+    result.passes = so.passes;
+    // The sums become means, with the checks setPixel() makes, pixel by pixel as in one go.
+    parallelFor(settings.backend, workers, plan, [&](size_t i, int worker) {
+      const WorkItem& item = plan.items[i];
+      RenderStats& counts = result.workers[size_t(worker)].counts;
+      for (int y = item.y0; y < item.y1; ++y)
+        for (int x = item.x0; x < item.x1; ++x) {
+          const float* p = result.image.row(y) + size_t(x) * 3;
+          const PixelSum sum{p[0], p[1], p[2]};
+          const bool finite = !buffers.nonFinite[size_t(y) * size_t(settings.width) + size_t(x)];
+          setPixel(result.image, x, y, sum.mean(size_t(samples)), finite, counts);
+        }
+    });
+  }
+  SamplerSettings used = settings.sampler;
+  used.samplesPerPixel = samples;
+  result.effects = scene.effects | (PixelSampler(used).count() > 1 ? kSupersampling : 0u);
   for (const WorkerStats& ws : result.workers) result.totals += ws.counts;
   result.cancelled = cancelled;
   cropToArea(result, settings);

@@ -29,6 +29,12 @@ struct RenderSettings {
   // Renders only every itemStride-th work item of the plan (the time budget's pilot: a
   // sample of the image at its own resolution); the other pixels are left unset.
   int itemStride = 1;
+  // A render in passes (the sequence sampler): called before each pass with what the passes
+  // so far did, it says where the next one ends: samples [done, next) of every pixel, next
+  // a restart point after done when it is not the last (nextRestart()); done (or less) to
+  // stop. sampler.samplesPerPixel is then only the most it may say. Empty: one go. The
+  // image is that of --spp done (render/passes.h).
+  std::function<int(const struct PassesSoFar&)> nextPass;
   // Called now and then from one worker with the pixels finished so far; may be empty.
   std::function<void(long done, long total)> progress;
   // Called at most once, from a watchdog thread, when the render is predicted to take at
@@ -47,6 +53,17 @@ struct LongRender {
   double shareDone = 0;  // of the pixels
 };
 
+// One pass of a render in passes: samples [first, last) of every pixel.
+struct PassRecord {
+  int first = 0, last = 0;
+  double seconds = 0;  // wall time of the pass
+};
+struct PassesSoFar {
+  int done = 0;  // samples per pixel traced
+  std::vector<PassRecord> passes;
+  double seconds = 0;  // since the render began
+};
+
 // Aligned to a cache line: workers update their own counters per ray.
 struct alignas(64) WorkerStats {
   RenderStats counts;
@@ -62,6 +79,7 @@ struct RenderResult {
   EffectSet effects = 0;  // the kernel's effects (plus supersampling)
   double seconds = 0;
   bool cancelled = false;  // by a signal (core/interrupt.h): the image is incomplete
+  std::vector<PassRecord> passes;  // a render in passes: each pass (the last one's end is c)
 };
 
 RenderResult render(const Scene& scene, const RenderSettings& settings);

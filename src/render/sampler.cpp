@@ -31,7 +31,21 @@ std::vector<double> povOffsets(int n) {
   return out;
 }
 
+// Roberts' R2 sequence: sample k at frac(shift + k (1/g, 1/g^2)), g the plastic number (the
+// real root of x^3 = x + 1). Its first n points are well spread for every n.
+constexpr double kPlastic = 1.32471795724474602596;
+constexpr double kR2StepX = 1.0 / kPlastic, kR2StepY = 1.0 / (kPlastic * kPlastic);
+double fractionOf(double v) { return v - std::floor(v); }
+
 }  // namespace
+
+int nextRestart(int k) {
+  constexpr int period = PixelSampler::kRestartPeriod;
+  if (k >= period) return (k / period + 1) * period;
+  int next = 1;
+  while (next <= k) next *= 2;
+  return next;
+}
 
 int perfectSquareRoot(int c) {
   if (c < 1) return -1;
@@ -49,7 +63,7 @@ int stratumRows(int c) {
 PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
   const int c = settings.samplesPerPixel;
   if (c < 1) throw Error(ExitCode::Usage, "--spp must be a positive whole number, got " + std::to_string(c));
-  if (s_.kind == SamplerKind::Jitter) {
+  if (s_.kind == SamplerKind::Jitter || s_.kind == SamplerKind::Sequence) {
     // Strata of any shape: the paper's c is any whole number (its figures use c = 8).
     rows_ = stratumRows(c);
     cols_ = c / rows_;
@@ -71,6 +85,13 @@ PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
       for (int i = 0; i < cols_; ++i) fixed_.push_back({-0.5 + (i + 0.5) / cols_, -0.5 + (j + 0.5) / rows_});
   }
   count_ = int(fixed_.size());
+  if (s_.firstSample != 0) {
+    if (s_.kind != SamplerKind::Sequence)
+      throw Error(ExitCode::Usage, "a render in passes needs the sequence sampler");
+    if (s_.firstSample < 0 || s_.firstSample >= count_ || !isSequenceRestart(s_.firstSample))
+      throw Error(ExitCode::Usage, fmt::format("a pass cannot start at sample {} of {}", s_.firstSample, count_));
+    first_ = s_.firstSample;
+  }
   validateAdaptive();
 }
 
@@ -94,6 +115,14 @@ void PixelSampler::validateAdaptive() {
 }
 
 void PixelSampler::offsets(int x, int y, std::vector<SubSample>& out) const {
+  if (s_.kind == SamplerKind::Sequence) {
+    out.resize(size_t(count_ - first_));
+    const uint64_t pixel = mix(s_.seed ^ mix((uint64_t(uint32_t(y)) << 32) | uint32_t(x)));
+    const double shiftX = unitFloat(pixel), shiftY = unitFloat(mix(pixel));
+    for (int k = first_; k < count_; ++k)
+      out[size_t(k - first_)] = {fractionOf(shiftX + k * kR2StepX) - 0.5, fractionOf(shiftY + k * kR2StepY) - 0.5};
+    return;
+  }
   out = fixed_;
   if (s_.kind != SamplerKind::Jitter || count_ == 1) return;
   const uint64_t pixel = mix(s_.seed ^ mix((uint64_t(uint32_t(y)) << 32) | uint32_t(x)));
@@ -108,7 +137,8 @@ SamplerKind parseSamplerKind(const std::string& name) {
   if (name == "pov") return SamplerKind::Pov;
   if (name == "grid") return SamplerKind::Grid;
   if (name == "jitter") return SamplerKind::Jitter;
-  throw Error(ExitCode::Usage, "unknown sampler \"" + name + "\" (use pov, grid or jitter)");
+  if (name == "sequence") return SamplerKind::Sequence;
+  throw Error(ExitCode::Usage, "unknown sampler \"" + name + "\" (use pov, grid, jitter or sequence)");
 }
 
 const char* samplerName(SamplerKind kind) {
@@ -116,6 +146,7 @@ const char* samplerName(SamplerKind kind) {
     case SamplerKind::Pov: return "pov";
     case SamplerKind::Grid: return "grid";
     case SamplerKind::Jitter: return "jitter";
+    case SamplerKind::Sequence: return "sequence";
   }
   return "?";
 }

@@ -8,6 +8,11 @@
 //           n the largest divisor of c not above sqrt(c): any c >= 1, and n x n when c
 //           is a square), seeded from (pixel, sample, seed) so the image never depends
 //           on the thread.
+//   sequence: a low-discrepancy sequence (Roberts' R2, the additive recurrence of the
+//           plastic number), shifted at random per pixel (from (pixel, seed)). Sample k
+//           does not depend on c, so the first c samples of any larger c are the c
+//           samples: a render can go in passes of more samples and stop between them
+//           (a time budget, render/passes.h), with the image of --spp c.
 // With `adaptive` (pov only) the pov sampler is POV-Ray's +A<t> +AM1 or +AM2 +Rn -J instead
 // (render/adaptive.h): which pixels get more rays depends on their neighbours, so the
 // kernel renders whole POV-Ray blocks (blockGranule()).
@@ -22,25 +27,43 @@
 
 namespace pvrt {
 
-enum class SamplerKind { Pov, Grid, Jitter };
+enum class SamplerKind { Pov, Grid, Jitter, Sequence };
 
 struct SamplerSettings {
   SamplerKind kind = SamplerKind::Pov;
-  int samplesPerPixel = 1;  // c; a perfect square for pov and grid, any c >= 1 for jitter
-  uint64_t seed = 0;        // jitter only
+  int samplesPerPixel = 1;  // c; a perfect square for pov and grid, any c >= 1 for jitter and sequence
+  uint64_t seed = 0;        // jitter and sequence
   // POV-Ray's antialiasing threshold and method (pov only). Threshold 0 with method 1 is
   // the plain pov sampler (every pixel supersampled); c = 1 is -A whatever they say.
   AdaptiveSettings adaptive = {};
+  // sequence only: this render traces samples [firstSample, samplesPerPixel) of each pixel,
+  // one pass of a render in passes (render/passes.h); a restart point (restartsAt()).
+  int firstSample = 0;
 };
 
 class PixelSampler {
  public:
   explicit PixelSampler(const SamplerSettings& settings);
 
-  // The sub-pixel offsets of pixel (x, y), in a fixed order. Their colours are summed in
-  // that order and divided by count() — the same arithmetic on every backend.
+  // The sub-pixel offsets of pixel (x, y), in a fixed order: samples [firstSample(),
+  // count()). Their colours are summed in that order and divided by count() — the same
+  // arithmetic on every backend.
   void offsets(int x, int y, std::vector<SubSample>& out) const;
   int count() const { return count_; }
+  int firstSample() const { return first_; }
+  // Whether the shadow cache starts empty at sample k of a pixel (render/tracer.h keeps it
+  // from one sample to the next within a pixel). Sample 0 for every sampler; for sequence
+  // also 1, 2, 4, ..., 64 and every multiple of 64, where a render in passes may start a
+  // pass, so that a pixel's samples see the same cache whether traced in one pass or many.
+  bool restartsAt(int k) const {
+    if (k == 0) return true;
+    return s_.kind == SamplerKind::Sequence && isSequenceRestart(k);
+  }
+  static constexpr int kRestartPeriod = 64;  // kMaxPacket: a pixel's packets start at its multiples
+  // 0, 1, 2, 4, ..., kRestartPeriod and its multiples.
+  static bool isSequenceRestart(int k) {
+    return k % kRestartPeriod == 0 || (k > 0 && k < kRestartPeriod && (k & (k - 1)) == 0);
+  }
   // POV-Ray's +R n: the side of the grid (1 for c = 1).
   int depth() const { return rows_; }
   // True when pixels are rendered by render/adaptive.h rather than by offsets().
@@ -55,6 +78,7 @@ class PixelSampler {
   SamplerSettings s_;
   int rows_ = 1, cols_ = 1;  // the strata: rows_ x cols_ cells
   int count_ = 1;
+  int first_ = 0;
   bool adaptive_ = false;
   std::vector<SubSample> fixed_;
 };
@@ -66,5 +90,8 @@ int perfectSquareRoot(int c);
 // The rows of the jitter sampler's strata for c samples: the largest divisor of c that is at
 // most sqrt(c) (so c / rows >= rows columns; 1 for a prime c).
 int stratumRows(int c);
+// The restart point of the sequence sampler after sample k (> k): where the next pass of a
+// render in passes may begin.
+int nextRestart(int k);
 
 }  // namespace pvrt

@@ -165,10 +165,21 @@ set_tests_properties(e2e.generate.radii PROPERTIES LABELS e2e)
 pvrt_expect_error(generate_radius_max_below_min 2 "radius-min <= radius-max"
   ABSENT out.xml ARGS generate --spheres 100 --radius-max 0.1 -o <DIR>/out.xml)
 
-# `pvrt render --time-budget`: pilots at c = 1 and up, a c chosen and printed (jitter, any c, unless --sampler says otherwise); budgets must be positive.
+# `pvrt render --time-budget`: by default passes of the sequence sampler (render/passes.h), whose image
+# is --spp c's; with --sampler jitter, pov or grid, pilots at c = 1 and up and a c chosen and printed
+# (any c for jitter, squares for pov); budgets must be positive.
 add_test(NAME e2e.time_budget
   COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget.png -W 32 -H 20 --time-budget 0.2)
 set_tests_properties(e2e.time_budget PROPERTIES LABELS e2e
+  PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: [0-9]+ passes of the sequence sampler reached --spp [0-9]+ \\(render")
+add_test(NAME e2e.time_budget_passes
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/time_budget_passes.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
+          ${PVRT_E2E_DIR}/time-budget-passes)
+set_tests_properties(e2e.time_budget_passes PROPERTIES LABELS e2e TIMEOUT 120 RUN_SERIAL TRUE)
+add_test(NAME e2e.time_budget_jitter
+  COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget_jitter.png -W 32 -H 20 --time-budget 0.2
+          --sampler jitter)
+set_tests_properties(e2e.time_budget_jitter PROPERTIES LABELS e2e
   PASS_REGULAR_EXPRESSION "time budget 0\\.2 s: [1-6] pilot\\(s\\) on [0-9.]+% of the pixels took [0-9.]+ s \\(c=1: [0-9.e+-]+ s/pixel.*\\); chose --spp [0-9]+ --sampler jitter \\(predicted render")
 add_test(NAME e2e.time_budget_pov
   COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget_pov.png -W 32 -H 20 --time-budget 0.2 --sampler pov)

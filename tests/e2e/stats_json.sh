@@ -36,9 +36,19 @@ python3 - "$out/b.json" <<'PY' || fail "the JSON on standard output lacks the re
 import json, sys
 j = json.load(open(sys.argv[1]))
 assert j["image"]["region"] == {"x0": 1, "y0": 0, "x1": 33, "y1": 40}, j["image"]
-assert sum(w["pixels"] for w in j["workers"]) == 32 * 40
 b = j["time_budget"]
-assert b["pilots"][0]["spp"] == 1 and b["chosen_spp"] == j["image"]["spp"], b
+assert b["method"] == "passes" and b["budget_seconds"] == 0.3, b
+# Every pass traces every pixel of the region again.
+assert sum(w["pixels"] for w in j["workers"]) == 32 * 40 * len(b["passes"])
+assert b["passes"][0]["end_sample"] == 1 and b["chosen_spp"] == j["image"]["spp"] == b["passes"][-1]["end_sample"], b
+PY
+"$pvrt" render "$scene" -W 64 -H 40 --time-budget 0.3 --sampler jitter -o "$out/j.png" --quiet --stats-json - >"$out/j.json"
+python3 - "$out/j.json" <<'PY' || fail "the JSON lacks the pilots of a budget with --sampler jitter"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert sum(w["pixels"] for w in j["workers"]) == 64 * 40
+b = j["time_budget"]
+assert b["method"] == "pilots" and b["pilots"][0]["spp"] == 1 and b["chosen_spp"] == j["image"]["spp"], b
 PY
 # A run that fails writes neither the image nor the JSON.
 echo '<scene><sphere radius="1"/></scene>' >"$out/bad.xml"

@@ -135,7 +135,9 @@ TEST(Sampler, JitterTakesAnyCAndFillsEveryStratumOnce) {
       ++hits[size_t(j * cols + i)];
     }
     for (int h : hits) EXPECT_EQ(h, 1) << "c=" << c;
-    if (c > 1) EXPECT_NE(a[0].dx, other[0].dx) << "c=" << c;
+    if (c > 1) {
+      EXPECT_NE(a[0].dx, other[0].dx) << "c=" << c;
+    }
   }
 }
 
@@ -182,8 +184,76 @@ TEST(Sampler, JitterAtASquareKeepsItsSquareStrata) {
   EXPECT_EQ(o[15].dy, 0x1.fa8a707d2f27ap-2);
 }
 
+TEST(Sampler, SequenceSampleKDoesNotDependOnC) {
+  SamplerSettings few{SamplerKind::Sequence, 5, 3}, many{SamplerKind::Sequence, 37, 3};
+  std::vector<SubSample> a, b, c;
+  PixelSampler(few).offsets(4, 9, a);
+  PixelSampler(many).offsets(4, 9, b);
+  ASSERT_EQ(a.size(), 5u);
+  ASSERT_EQ(b.size(), 37u);
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].dx, b[k].dx);
+    EXPECT_EQ(a[k].dy, b[k].dy);
+  }
+  for (const SubSample& o : b) {
+    EXPECT_GE(o.dx, -0.5);
+    EXPECT_LT(o.dx, 0.5);
+    EXPECT_GE(o.dy, -0.5);
+    EXPECT_LT(o.dy, 0.5);
+  }
+  // A pass's window is the tail of the whole.
+  many.firstSample = 32;
+  PixelSampler(many).offsets(4, 9, c);
+  ASSERT_EQ(c.size(), 5u);
+  for (size_t k = 0; k < c.size(); ++k) EXPECT_EQ(c[k].dx, b[32 + k].dx);
+  // Another pixel or seed, other points.
+  PixelSampler(few).offsets(5, 9, c);
+  EXPECT_NE(c[0].dx, a[0].dx);
+  PixelSampler({SamplerKind::Sequence, 5, 4}).offsets(4, 9, c);
+  EXPECT_NE(c[0].dx, a[0].dx);
+}
+
+TEST(Sampler, SequenceSpreadsEveryPrefixOverThePixel) {
+  // Each quarter of the pixel holds about a quarter of the first c samples, for every c.
+  for (int c = 4; c <= 256; ++c) {
+    std::vector<SubSample> o;
+    PixelSampler({SamplerKind::Sequence, c, 11}).offsets(2, 3, o);
+    int quarter[4] = {};
+    for (const SubSample& s : o) ++quarter[(s.dx < 0 ? 0 : 1) + (s.dy < 0 ? 0 : 2)];
+    for (int q : quarter) {
+      EXPECT_GE(q, c / 4 - 2) << "c = " << c;
+      EXPECT_LE(q, c / 4 + 3) << "c = " << c;
+    }
+  }
+}
+
+TEST(Sampler, PassesStartOnlyAtTheSequencesRestartPoints) {
+  EXPECT_EQ(nextRestart(0), 1);
+  EXPECT_EQ(nextRestart(1), 2);
+  EXPECT_EQ(nextRestart(5), 8);
+  EXPECT_EQ(nextRestart(32), 64);
+  EXPECT_EQ(nextRestart(64), 128);
+  EXPECT_EQ(nextRestart(100), 128);
+  const PixelSampler seq({SamplerKind::Sequence, 300, 0}), jitter({SamplerKind::Jitter, 300, 0});
+  for (int k = 0; k < 300; ++k) {
+    const bool restart = k == 0 || k == 1 || k == 2 || k == 4 || k == 8 || k == 16 || k == 32 || k % 64 == 0;
+    EXPECT_EQ(seq.restartsAt(k), restart) << k;
+    EXPECT_EQ(jitter.restartsAt(k), k == 0) << k;
+  }
+  SamplerSettings s{SamplerKind::Sequence, 10, 0};
+  s.firstSample = 3;
+  EXPECT_THROW(PixelSampler{s}, Error);
+  s.firstSample = 10;
+  EXPECT_THROW(PixelSampler{s}, Error);
+  s.firstSample = 8;
+  EXPECT_EQ(PixelSampler(s).firstSample(), 8);
+  s.kind = SamplerKind::Jitter;
+  EXPECT_THROW(PixelSampler{s}, Error);
+}
+
 TEST(Sampler, ParsesNames) {
   EXPECT_EQ(parseSamplerKind("jitter"), SamplerKind::Jitter);
+  EXPECT_EQ(parseSamplerKind("sequence"), SamplerKind::Sequence);
   EXPECT_THROW(parseSamplerKind("random"), Error);
 }
 
