@@ -207,9 +207,10 @@ int runAccuracy(const AccuracyOptions& o) {
     return s;
   };
   auto pattern = [&](const std::string& name, int spp) {
-    if (name != "pov" && name != "grid" && name != "jitter" && name != "adaptive1" && name != "adaptive2")
+    if (name != "pov" && name != "grid" && name != "jitter" && name != "sequence" && name != "adaptive1" &&
+        name != "adaptive2")
       throw Error(ExitCode::Usage,
-                  "unknown sample pattern \"" + name + "\" (use pov, grid, jitter, adaptive1 or adaptive2)");
+                  "unknown sample pattern \"" + name + "\" (use pov, grid, jitter, sequence, adaptive1 or adaptive2)");
     SamplerSettings s = patternSettings(name, spp, o.seed, o.aaThreshold);
     PixelSampler check(s);
     return s;

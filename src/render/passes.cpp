@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/sampler.h"
 
 namespace pvrt {
 
@@ -12,6 +11,14 @@ namespace {
 // (as for the pilots: two close passes on a shared machine can give any slope).
 constexpr double kMinSlopeShare = 0.5;
 }  // namespace
+
+int wholePassEnd(int done) {
+  constexpr int kLongest = 64;  // kMaxPacket: a pixel's packets start at its multiples
+  if (done >= kLongest) return (done / kLongest + 1) * kLongest;
+  int next = 1;
+  while (next <= done) next *= 2;
+  return next;
+}
 
 double predictPassSeconds(const std::vector<PassRecord>& passes, int samples) {
   if (passes.empty()) return 0;
@@ -31,14 +38,13 @@ double predictPassSeconds(const std::vector<PassRecord>& passes, int samples) {
 int nextPassEnd(const PassBudget& budget, const PassesSoFar& so) {
   if (so.done == 0) return 1;
   const int done = so.done;
-  // A last pass ended off a restart point: no pass can follow it.
-  if (done >= budget.maxSamples || !PixelSampler::isSequenceRestart(done)) return done;
+  if (done >= budget.maxSamples) return done;
   const double left = budget.budgetSeconds - budget.spentSeconds - so.seconds - budget.writeSeconds;
-  const int restart = std::min(nextRestart(done), budget.maxSamples);
-  if (predictPassSeconds(so.passes, restart - done) <= left) return restart;
-  // The last pass: the most samples that fit, or one more when that ends nearer the budget
+  const int whole = std::min(wholePassEnd(done), budget.maxSamples);
+  if (predictPassSeconds(so.passes, whole - done) <= left) return whole;
+  // A shorter pass: the most samples that fit, or one more when that ends nearer the budget
   // (and not too far over it).
-  int lo = 0, hi = restart - done - 1;  // predicted to fit: lo; the full pass does not
+  int lo = 0, hi = whole - done - 1;  // predicted to fit: lo; the whole pass does not
   while (lo < hi) {
     const int mid = lo + (hi - lo + 1) / 2;
     if (predictPassSeconds(so.passes, mid) <= left)

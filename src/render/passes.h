@@ -28,11 +28,15 @@ struct PassBudget {
 // size. 0 before any pass.
 double predictPassSeconds(const std::vector<PassRecord>& passes, int samples);
 
+// Where a whole pass after `done` samples ends: 1, 2, 4, ..., 64, then every 64 (each pass
+// as long as the samples so far, until a pass is long enough to measure well).
+int wholePassEnd(int done);
+
 // Where the next pass ends (RenderSettings::nextPass): samples [so.done, next) of every
-// pixel. The first pass is one sample; then whole passes to the next restart point
-// (nextRestart(): 1, 2, 4, ..., 64, then every 64) while one is predicted to fit in what is
-// left of the budget, and a last pass of as many samples as bring the end nearest to the
-// budget, over it by at most kMaxOvershoot of it; so.done to stop.
+// pixel. The first pass is one sample; then whole passes (wholePassEnd()) while one is
+// predicted to fit in what is left of the budget, then a shorter pass of as many samples as
+// bring the end nearest to the budget (over it by at most kMaxOvershoot of it), and again
+// while that leaves time for a sample; so.done to stop.
 int nextPassEnd(const PassBudget& budget, const PassesSoFar& so);
 
 inline constexpr double kMaxOvershoot = 0.05;

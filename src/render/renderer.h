@@ -30,9 +30,8 @@ struct RenderSettings {
   // sample of the image at its own resolution); the other pixels are left unset.
   int itemStride = 1;
   // A render in passes (the sequence sampler): called before each pass with what the passes
-  // so far did, it says where the next one ends: samples [done, next) of every pixel, next
-  // a restart point after done when it is not the last (nextRestart()); done (or less) to
-  // stop. sampler.samplesPerPixel is then only the most it may say. Empty: one go. The
+  // so far did, it says where the next one ends: samples [done, next) of every pixel; done
+  // (or less) to stop. sampler.samplesPerPixel is then only the most it may say. Empty: one go. The
   // image is that of --spp done (render/passes.h).
   std::function<int(const struct PassesSoFar&)> nextPass;
   // Called now and then from one worker with the pixels finished so far; may be empty.

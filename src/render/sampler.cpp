@@ -39,14 +39,6 @@ double fractionOf(double v) { return v - std::floor(v); }
 
 }  // namespace
 
-int nextRestart(int k) {
-  constexpr int period = PixelSampler::kRestartPeriod;
-  if (k >= period) return (k / period + 1) * period;
-  int next = 1;
-  while (next <= k) next *= 2;
-  return next;
-}
-
 int perfectSquareRoot(int c) {
   if (c < 1) return -1;
   int n = int(std::lround(std::sqrt(double(c))));
@@ -88,7 +80,7 @@ PixelSampler::PixelSampler(const SamplerSettings& settings) : s_(settings) {
   if (s_.firstSample != 0) {
     if (s_.kind != SamplerKind::Sequence)
       throw Error(ExitCode::Usage, "a render in passes needs the sequence sampler");
-    if (s_.firstSample < 0 || s_.firstSample >= count_ || !isSequenceRestart(s_.firstSample))
+    if (s_.firstSample < 0 || s_.firstSample >= count_)
       throw Error(ExitCode::Usage, fmt::format("a pass cannot start at sample {} of {}", s_.firstSample, count_));
     first_ = s_.firstSample;
   }

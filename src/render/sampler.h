@@ -12,7 +12,8 @@
 //           plastic number), shifted at random per pixel (from (pixel, seed)). Sample k
 //           does not depend on c, so the first c samples of any larger c are the c
 //           samples: a render can go in passes of more samples and stop between them
-//           (a time budget, render/passes.h), with the image of --spp c.
+//           (a time budget, render/passes.h), with the image of --spp c. Each sample is
+//           traced on its own (restartsAt()).
 // With `adaptive` (pov only) the pov sampler is POV-Ray's +A<t> +AM1 or +AM2 +Rn -J instead
 // (render/adaptive.h): which pixels get more rays depends on their neighbours, so the
 // kernel renders whole POV-Ray blocks (blockGranule()).
@@ -37,7 +38,7 @@ struct SamplerSettings {
   // the plain pov sampler (every pixel supersampled); c = 1 is -A whatever they say.
   AdaptiveSettings adaptive = {};
   // sequence only: this render traces samples [firstSample, samplesPerPixel) of each pixel,
-  // one pass of a render in passes (render/passes.h); a restart point (restartsAt()).
+  // one pass of a render in passes (render/passes.h).
   int firstSample = 0;
 };
 
@@ -52,18 +53,11 @@ class PixelSampler {
   int count() const { return count_; }
   int firstSample() const { return first_; }
   // Whether the shadow cache starts empty at sample k of a pixel (render/tracer.h keeps it
-  // from one sample to the next within a pixel). Sample 0 for every sampler; for sequence
-  // also 1, 2, 4, ..., 64 and every multiple of 64, where a render in passes may start a
-  // pass, so that a pixel's samples see the same cache whether traced in one pass or many.
-  bool restartsAt(int k) const {
-    if (k == 0) return true;
-    return s_.kind == SamplerKind::Sequence && isSequenceRestart(k);
-  }
-  static constexpr int kRestartPeriod = 64;  // kMaxPacket: a pixel's packets start at its multiples
-  // 0, 1, 2, 4, ..., kRestartPeriod and its multiples.
-  static bool isSequenceRestart(int k) {
-    return k % kRestartPeriod == 0 || (k > 0 && k < kRestartPeriod && (k & (k - 1)) == 0);
-  }
+  // from one sample to the next within a pixel, as POV-Ray keeps it from ray to ray): at
+  // sample 0 for every sampler, and at every sample for sequence, whose samples are each
+  // traced on their own, so that a pixel is the same bits however a render in passes cuts
+  // its samples.
+  bool restartsAt(int k) const { return k == 0 || s_.kind == SamplerKind::Sequence; }
   // POV-Ray's +R n: the side of the grid (1 for c = 1).
   int depth() const { return rows_; }
   // True when pixels are rendered by render/adaptive.h rather than by offsets().
@@ -90,8 +84,5 @@ int perfectSquareRoot(int c);
 // The rows of the jitter sampler's strata for c samples: the largest divisor of c that is at
 // most sqrt(c) (so c / rows >= rows columns; 1 for a prime c).
 int stratumRows(int c);
-// The restart point of the sequence sampler after sample k (> k): where the next pass of a
-// render in passes may begin.
-int nextRestart(int k);
 
 }  // namespace pvrt

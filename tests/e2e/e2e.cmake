@@ -136,7 +136,7 @@ set_tests_properties(e2e.accuracy.table e2e.accuracy.plot PROPERTIES LABELS e2e)
 set_tests_properties(e2e.accuracy.plot PROPERTIES SKIP_RETURN_CODE 77)
 pvrt_expect_error(accuracy_spp_not_square 2 "perfect square"
   ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} --spp-list 1,5 --csv <DIR>/out.csv)
-pvrt_expect_error(accuracy_unknown_sampler 2 "unknown sample pattern .halton. \\(use pov, grid, jitter, adaptive1 or adaptive2\\)"
+pvrt_expect_error(accuracy_unknown_sampler 2 "unknown sample pattern .halton. \\(use pov, grid, jitter, sequence, adaptive1 or adaptive2\\)"
   ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} --samplers pov,halton --csv <DIR>/out.csv)
 pvrt_expect_error(accuracy_reference_size 2 "is 160 x 100, the render would be 100 x 100"
   ABSENT out.csv ARGS accuracy ${PVRT_PAPER1} -W 100 -H 100 --reference ${PROJECT_SOURCE_DIR}/reference/paper1.png

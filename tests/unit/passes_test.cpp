@@ -45,7 +45,7 @@ void expectSameImage(const Image& a, const Image& b) {
 
 TEST(Passes, AnImageInPassesIsOneGosBitForBit) {
   const Scene scene = buildScene(loadSceneString(kScene, "passes.xml"));
-  const std::vector<int> ends{1, 2, 4, 8, 64, 70};
+  const std::vector<int> ends{1, 3, 4, 8, 64, 67, 70};  // whole passes, and shorter ones anywhere
   const RenderResult whole = render(scene, sequence(70, 120, 75));
   for (Backend b : {Backend::Serial, Backend::OpenMP})
     for (Strategy st : {Strategy::Tiles, Strategy::Cyclic, Strategy::Dynamic}) {
@@ -70,7 +70,7 @@ TEST(Passes, SmallPassesAndALoadMapGiveTheSameImage) {
   for (int c : {1, 3, 5, 12}) {
     const RenderResult whole = render(scene, sequence(c));
     std::vector<int> ends;
-    for (int k = 1; k < c; k = nextRestart(k)) ends.push_back(k);
+    for (int k = 1; k < c; k = wholePassEnd(k)) ends.push_back(k);
     ends.push_back(c);
     RenderSettings s = sequence(c);
     s.nextPass = passesEndingAt(ends);
@@ -85,14 +85,11 @@ TEST(Passes, SmallPassesAndALoadMapGiveTheSameImage) {
   }
 }
 
-TEST(Passes, APassStartsOnlyAtARestartPoint) {
+TEST(Passes, OnlyTheSequenceSamplerGoesInPasses) {
   const Scene scene = buildScene(loadSceneString(kScene, "passes.xml"));
-  RenderSettings s = sequence(100);
-  s.nextPass = passesEndingAt({1, 3, 5});  // 3 is not a restart point
-  EXPECT_THROW(render(scene, s), Error);
   RenderSettings pov = test::settings(8, 8);
   pov.sampler.samplesPerPixel = 4;
-  pov.nextPass = passesEndingAt({1, 4});  // only the sequence sampler goes in passes
+  pov.nextPass = passesEndingAt({1, 4});  // pov's, grid's and jitter's samples depend on c
   EXPECT_THROW(render(scene, pov), Error);
 }
 
@@ -114,6 +111,16 @@ TEST(Passes, PredictionFollowsTheLatestPassesOfDifferentSizes) {
   EXPECT_NEAR(predictPassSeconds({{2, 4, 0.8}, {4, 8, 0.8}}, 8), 0.8 + 0.1 * 4, 1e-12);
 }
 
+TEST(Passes, WholePassesDoubleTheSamplesUpTo64) {
+  EXPECT_EQ(wholePassEnd(0), 1);
+  EXPECT_EQ(wholePassEnd(1), 2);
+  EXPECT_EQ(wholePassEnd(3), 4);
+  EXPECT_EQ(wholePassEnd(5), 8);
+  EXPECT_EQ(wholePassEnd(32), 64);
+  EXPECT_EQ(wholePassEnd(64), 128);
+  EXPECT_EQ(wholePassEnd(100), 128);
+}
+
 TEST(Passes, FirstOneSampleThenWholePassesWhileTheyFit) {
   const PassBudget b{10, 1, 0.1, 1 << 16};
   EXPECT_EQ(nextPassEnd(b, after({}, 0)), 1);
@@ -132,8 +139,10 @@ TEST(Passes, TheLastPassEndsNearestTheBudget) {
   EXPECT_EQ(nextPassEnd(b, after({{0, 1, 0.6}, {1, 2, 0.6}}, 1.2)), 2);  // 0.35 s left: 1 more is 0.25 over
   // 0.55 s left and a sample of 0.6 s: 0.05 s over (2.5% of the budget) is nearer than 0.55 under.
   EXPECT_EQ(nextPassEnd({2, 0.4, 0.05, 1 << 16}, after({{0, 1, 0.6}, {1, 2, 0.6}}, 1.0)), 3);
-  // A last pass off a restart point ends the render.
-  EXPECT_EQ(nextPassEnd(b, after({{0, 1, 0.01}, {1, 2, 0.01}, {2, 3, 0.01}}, 0.03)), 3);
+  // After a shorter pass, another while a sample still fits: 0.35 s left, 0.3 s a sample.
+  EXPECT_EQ(nextPassEnd({2, 0.4, 0.05, 1 << 16}, after({{0, 1, 0.3}, {1, 2, 0.3}, {2, 3, 0.3}}, 1.2)), 4);
+  // ... and none when the end is nearest without it: 0.1 s left, 0.3 s a sample.
+  EXPECT_EQ(nextPassEnd({2, 0.4, 0.05, 1 << 16}, after({{0, 1, 0.3}, {1, 2, 0.3}, {2, 3, 0.3}}, 1.45)), 3);
   // The most samples the caller allows.
   EXPECT_EQ(nextPassEnd({1000, 0, 0, 4}, after({{0, 1, 0.01}, {1, 2, 0.01}, {2, 4, 0.02}}, 0.04)), 4);
 }
