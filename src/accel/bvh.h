@@ -111,8 +111,8 @@ class Bvh {
   SurfacePoint surfacePoint(uint32_t i, const Ray& ray, const ShapeHit& hit) const {
     const PrimitiveRecord& it = items_[i];
     switch (it.kind) {
-      case PrimitiveRecord::Kind::Sphere: return sphereSurfacePoint(it.sphere, ray.at(hit.t));
-      case PrimitiveRecord::Kind::Plane: return planeSurfacePoint(it.plane, ray.at(hit.t));
+      case PrimitiveRecord::Kind::Sphere: return sphereHitPoint(it.sphere, ray.at(hit.t));
+      case PrimitiveRecord::Kind::Plane: return planeHitPoint(it.plane, ray.at(hit.t));
       case PrimitiveRecord::Kind::Other: break;
     }
     return others_[it.other].surfacePoint(ray, hit);

@@ -79,12 +79,24 @@ inline unsigned intersectWorldSphere4(const SphereShape& s, float unitF, const P
   // Outside and moving away: no hit (as the scalar test's first early return).
   unsigned live = ~(lessEqual(r2, ocSquared) & less(closest, splat(kPovEpsilon * unit))) & 0xFu;
   if (live == 0) return 0;
-  const Double4 px = ocx - dx * closest, py = ocy - dy * closest, pz = ocz - dz * closest;
-  const Double4 halfChord2 = r2 - (px * px + py * py + pz * pz);
-  live &= ~lessEqual(halfChord2, splat(kPovEpsilon * unit * unit));
+  // POV-Ray's arithmetic, or Haines's in the lanes whose sphere is beyond its reach.
+  const Double4 eps = splat(kPovEpsilon * unit * unit);
+  const unsigned far = less(r2 * splat(kPovSphereReach2), ocSquared) & live;
+  Double4 halfChord2 = r2 - ocSquared + closest * closest;
+  if (far != 0) {
+    const Double4 px = ocx - dx * closest, py = ocy - dy * closest, pz = ocz - dz * closest;
+    halfChord2 = select(far, r2 - (px * px + py * py + pz * pz), halfChord2);
+  }
+  live &= less(eps, halfChord2);  // a NaN half chord misses, as in the scalar test
   if (live == 0) return 0;
-  const Double4 q = closest + copySign(lanes::sqrt(halfChord2), closest);
-  const Double4 t1 = (ocSquared - r2) / q;
+  const Double4 halfChord = lanes::sqrt(halfChord2);
+  Double4 t1 = closest - halfChord, q = closest + halfChord;
+  if (far != 0) {
+    const Double4 farRoot = closest + copySign(halfChord, closest);
+    const Double4 nearRoot = (ocSquared - r2) / farRoot;
+    t1 = select(far, nearRoot, t1);
+    q = select(far, farRoot, q);
+  }
   // nearestRoot(t1, q, max(lo, depth), hi): the smaller of the roots inside the interval.
   const double loS = std::max(lo, kDepthTolerance * unit);
   const Double4 low = splat(loS), high = load(hi);

@@ -152,8 +152,8 @@ struct Reproject {
   SurfacePoint operator()(const DiscShape& d) const { return flatSurfacePoint(d.normal, d.center, p); }
   SurfacePoint operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   SurfacePoint operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
-  SurfacePoint operator()(const PovTriangleShape& t) const { return povTrianglePoint(t.p1, t.normal, p); }
-  SurfacePoint operator()(const PovSmoothTriangleShape& t) const { return povTrianglePoint(t.p1, t.normal, p); }
+  SurfacePoint operator()(const PovTriangleShape& t) const { return flatSurfacePoint(t.normal, t.p1, p); }
+  SurfacePoint operator()(const PovSmoothTriangleShape& t) const { return flatSurfacePoint(t.normal, t.p1, p); }
   SurfacePoint operator()(const PovConeShape& c) const { return povConeSurfacePoint(c, p, hit.part); }
 
   // The barycentric combination of the corners (hit.u weights p2, hit.v weights p3).
@@ -246,7 +246,10 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
 }
 
 SurfacePoint Primitive::surfacePoint(const Ray& ray, const ShapeHit& hit) const {
-  if (!transform) return std::visit(Reproject{ray.at(hit.t), hit}, shape);
+  // Shaded where POV-Ray's hit point is, origin + t * dir in world space (VEvaluateRay);
+  // the point moved onto the surface, within its error bound, bounds how far that is.
+  const Vec3 at = ray.at(hit.t);
+  if (!transform) return hitPointNear(at, std::visit(Reproject{at, hit}, shape));
   const Ray local{transform->toObject.applyPoint(ray.origin), transform->toObject.applyVector(ray.dir)};
   const SurfacePoint sp = std::visit(Reproject{local.at(hit.t), hit}, shape);
   // Carry the point and its error to world space (pbrt-v4's bound for an affine map).
@@ -260,12 +263,7 @@ SurfacePoint Primitive::surfacePoint(const Ray& ray, const ShapeHit& hit) const 
     }
     error[i] = (1 + errorGamma(3)) * carried + errorGamma(3) * rounding;
   }
-  const Vec3 q = m.applyPoint(sp.p);
-  if (!std::holds_alternative<PovConeShape>(shape)) return {q, error};
-  // Shaded where POV-Ray's hit point is, origin + t * dir in world space; q, on the
-  // surface within `error`, bounds how far that point is from it.
-  const Vec3 at = ray.at(hit.t);
-  return {at, (vabs(at - q) + error) * (1 + errorGamma(2))};
+  return hitPointNear(at, {m.applyPoint(sp.p), error});
 }
 
 Vec3 Primitive::normal(const Ray& ray, const ShapeHit& hit) const {

@@ -28,6 +28,12 @@ inline constexpr double kPovEpsilon = 1e-10;
 inline constexpr double kMinIsectDepth = 1e-4;    // every hit closer than this is ignored
 inline constexpr double kMaxDistance = 1e7;       // every hit farther than this is dropped
 
+// Spheres farther than this many squared radii from the ray's origin are tested with
+// Haines's arithmetic (below): POV-Ray's r^2 - |oc|^2 + (oc.d)^2 loses about
+// 2u |oc|^2 to cancellation, which at 10^5 radii is 10^-6 of r^2 and grows from there
+// until its silhouettes and hit depths are noise. Nearer, POV-Ray's own arithmetic.
+inline constexpr double kPovSphereReach2 = 1e10;
+
 struct SphereShape { Vec3 center; double radius; };
 struct PlaneShape { Vec3 normal; double distance; };  // unit normal; n.X = d
 struct BoxShape { Vec3 lo, hi; };
@@ -61,7 +67,8 @@ struct Primitive {
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
-  // The hit point moved onto the exact surface (world space), with a bound on its error.
+  // POV-Ray's hit point, origin + t * dir (world space), with a bound on its distance
+  // from the surface.
   SurfacePoint surfacePoint(const Ray& ray, const ShapeHit& hit) const;
   // Geometric normal at the hit (world space, unit, not yet flipped toward the ray).
   Vec3 normal(const Ray& ray, const ShapeHit& hit) const;
@@ -82,22 +89,34 @@ inline std::optional<double> nearestRoot(double t1, double t2, double lo, double
 }
 
 // The sphere test on a direction taken as unit length (world rays are; local rays of
-// transformed spheres are normalised by the caller, as POV-Ray does). POV-Ray's miss
-// tests, with Haines et al.'s careful arithmetic (Ray Tracing Gems, chapter 7): the
-// squared half chord r^2 - |f - (f.d)d|^2 from the perpendicular distance (no cancellation
-// when the sphere is small or far away), and the stable pair of roots q and c / q.
+// transformed spheres are normalised by the caller, as POV-Ray does). POV-Ray's
+// Sphere::Intersect (shape/spheres.cpp), operation for operation, so that hit depths and
+// hit points are POV-Ray's to the bit (docs/fidelity.md); for spheres beyond
+// kPovSphereReach2, Haines et al.'s careful arithmetic (Ray Tracing Gems, chapter 7): the
+// squared half chord r^2 - |f - (f.d)d|^2 from the perpendicular distance, and the stable
+// pair of roots q and c / q.
 inline std::optional<ShapeHit> hitUnitSphere(const Vec3& center, double r2, const Vec3& origin, const Vec3& dir,
                                              double lo, double hi, double unit) {
   const Vec3 oc = center - origin;
   const double ocSquared = dot(oc, oc);
   const double closest = dot(oc, dir);  // distance to the point of closest approach
   if (ocSquared >= r2 && closest < kPovEpsilon * unit) return std::nullopt;
-  const Vec3 perp = oc - dir * closest;
-  const double halfChord2 = r2 - dot(perp, perp);
-  if (halfChord2 <= kPovEpsilon * unit * unit) return std::nullopt;
-  const double q = closest + std::copysign(std::sqrt(halfChord2), closest);  // the root farther from 0
-  const double c = ocSquared - r2;                                           // the product of the roots
-  const auto t = nearestRoot(c / q, q, std::max(lo, kDepthTolerance * unit), hi);
+  const double eps = kPovEpsilon * unit * unit;
+  double t1, t2;
+  if (ocSquared <= kPovSphereReach2 * r2) {
+    const double halfChord2 = r2 - ocSquared + closest * closest;
+    if (!(halfChord2 > eps)) return std::nullopt;
+    const double halfChord = std::sqrt(halfChord2);
+    t1 = closest - halfChord;
+    t2 = closest + halfChord;
+  } else {
+    const Vec3 perp = oc - dir * closest;
+    const double halfChord2 = r2 - dot(perp, perp);
+    if (!(halfChord2 > eps)) return std::nullopt;
+    t2 = closest + std::copysign(std::sqrt(halfChord2), closest);  // the root farther from 0
+    t1 = (ocSquared - r2) / t2;                                     // the product of the roots over it
+  }
+  const auto t = nearestRoot(t1, t2, std::max(lo, kDepthTolerance * unit), hi);
   if (!t) return std::nullopt;
   return ShapeHit{*t};
 }
@@ -145,8 +164,17 @@ inline SurfacePoint flatSurfacePoint(const Vec3& n, const Vec3& at, const Vec3& 
 inline SurfacePoint planeSurfacePoint(const PlaneShape& s, const Vec3& p) {
   return flatSurfacePoint(s.normal, s.normal * s.distance, p);
 }
-// (P - C) / r, unit but for rounding, as POV-Ray leaves it.
-inline Vec3 sphereNormal(const SphereShape& s, const Vec3& p) { return (p - s.center) / s.radius; }
+// POV-Ray's hit point p on an untransformed sphere or plane, with the bound on its
+// distance from the surface (Primitive::surfacePoint's answer).
+inline SurfacePoint sphereHitPoint(const SphereShape& s, const Vec3& p) {
+  return hitPointNear(p, sphereSurfacePoint(s, p));
+}
+inline SurfacePoint planeHitPoint(const PlaneShape& s, const Vec3& p) {
+  return hitPointNear(p, planeSurfacePoint(s, p));
+}
+// (P - C) times 1 / r (Sphere::Normal: VInverseScaleEq), unit but for rounding, as
+// POV-Ray leaves it.
+inline Vec3 sphereNormal(const SphereShape& s, const Vec3& p) { return (p - s.center) * (1.0 / s.radius); }
 
 // Triangles with their face normal normalize((p1-p2) x (p3-p2)) precomputed; a zero-area
 // triangle gets a zero normal and is never hit.

@@ -39,6 +39,13 @@ struct SurfacePoint {
   Vec3 error;
 };
 
+// The hit point p as POV-Ray computes it (origin + t * direction, VEvaluateRay), with a
+// bound on its distance from the surface: how far it is from `onSurface`, a point on the
+// surface within that point's own error bound.
+inline SurfacePoint hitPointNear(const Vec3& p, const SurfacePoint& onSurface) {
+  return {p, (vabs(p - onSurface.p) + onSurface.error) * (1 + errorGamma(2))};
+}
+
 // The origin for a ray leaving `sp` along `dir`: p moved along the normal `n` (either
 // orientation) by the error box's extent in that direction, to the side `dir` points to,
 // each component then rounded one step further away from p.

@@ -61,9 +61,36 @@ struct RayTolerances {
 // The scene's tolerances from its typical object size (render/scene.cpp).
 RayTolerances rayTolerances(double typicalSize, const Vec3& camera);
 
-// A ray leaving the surface point `sp` (normal n, either orientation) along `dir`.
-inline Ray spawnRay(const SurfacePoint& sp, const Vec3& n, const Vec3& dir) {
-  return {offsetRayOrigin(sp, n, dir), dir};
+// The thickness of the slab around the surface in which sp's point may lie, along n.
+inline double errorSlab(const SurfacePoint& sp, const Vec3& n) { return dot(vabs(n), sp.error); }
+
+// Where a ray leaving the hit point `sp` (normal n, either orientation) along `dir`
+// starts, when it ignores every hit nearer than `near`. POV-Ray starts it at the hit point
+// itself (MIN_ISECT_DEPTH then keeps it off the surface it left), and so does pvrt wherever
+// that is safe: where the ray leaves the error slab within half of `near`, the surface
+// cannot be met again beyond it. Elsewhere (a grazing ray, or coordinates so large that
+// the slab is thicker than `near`: where POV-Ray's own image has acne) it starts at the
+// error-bounded origin. docs/robustness.md, docs/fidelity.md.
+inline Vec3 spawnOrigin(const SurfacePoint& sp, const Vec3& n, const Vec3& dir, double near) {
+  if (errorSlab(sp, n) < 0.5 * near * std::fabs(dot(dir, n))) return sp.p;
+  return offsetRayOrigin(sp, n, dir);
+}
+inline Ray spawnRay(const SurfacePoint& sp, const Vec3& n, const Vec3& dir, double near) {
+  return {spawnOrigin(sp, n, dir, near), dir};
+}
+
+// Every shadow segment of a hit starts at one origin, whatever the light (its direction
+// l has n.l >= kPovEpsilon). The hit point itself, as in POV-Ray, when the slab is thin
+// enough that only a light within kShadowGrazing of the horizon (n.l below it, and so a
+// diffuse share below it) could find the surface again past `near` (the shorter of the
+// shadow tolerance and the cached blocker's minimum depth); else the error-bounded origin.
+inline constexpr double kShadowGrazing = 1e-6;
+inline double shadowSlabLimit(const RayTolerances& tol) {
+  return 0.5 * kShadowGrazing * std::min(tol.minDepth, tol.shadow);
+}
+inline Vec3 shadowSegmentOrigin(const SurfacePoint& sp, const Vec3& n, double slabLimit) {
+  if (errorSlab(sp, n) < slabLimit) return sp.p;
+  return offsetRayOrigin(sp, n, n);
 }
 
 }  // namespace pvrt

@@ -43,7 +43,10 @@ class Tracer {
 
  public:
   Tracer(const Scene& scene, RenderStats& stats)
-      : scene_(scene), stats_(stats), servesSquared_(squareBound(servesBound(scene.tol.shadow))) {}
+      : scene_(scene),
+        stats_(stats),
+        servesSquared_(squareBound(servesBound(scene.tol.shadow))),
+        shadowSlabLimit_(shadowSlabLimit(scene.tol)) {}
 
   // A spawned ray's weight as POV-Ray passes it to TraceRay: a float (COLC), compared with
   // adc_bailout (a double) on entry. Rounded here, before the comparison, so that a weight
@@ -94,7 +97,8 @@ class Tracer {
       // Every segment toward a light that lightContribution traces leaves on the side the
       // normal points to (it asks dot(n, l) >= kPovEpsilon first), so all of this hit's
       // segments start here.
-      if constexpr ((E & kShadows) != 0) setShadowOrigin(k, offsetRayOrigin(points_[k], normals_[k], normals_[k]));
+      if constexpr ((E & kShadows) != 0)
+        setShadowOrigin(k, shadowSegmentOrigin(points_[k], normals_[k], shadowSlabLimit_));
       px_[k] = points_[k].p.x, py_[k] = points_[k].p.y, pz_[k] = points_[k].p.z;
       nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
       pointError_[k] = length(points_[k].error);
@@ -211,7 +215,7 @@ class Tracer {
                                                                                f.reflection.min.maxComponent())));
         if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
           ++stats_.reflectedRays;
-          Color c = trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
+          Color c = trace(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside, true);
           if (f.reflection.exponent != 1) {
             // Reflect_Exp is the float 1/exponent, raised to on the float colour as it is: a
             // negative channel gives pow()'s answer (NaN unless the power is whole), not 0.
@@ -227,8 +231,8 @@ class Tracer {
 
   // tracePacket's per-hit set-up (hit point, normal, shadow origin) for packet rays k0 ..
   // k0+3 at once, when all four hit untransformed spheres or all four planes; false, with
-  // nothing done, otherwise. Each lane does the operations of sphereSurfacePoint or
-  // planeSurfacePoint, the normal, its flip and offsetRayOrigin in their order: the same bits.
+  // nothing done, otherwise. Each lane does the operations of sphereHitPoint or
+  // planeHitPoint, the normal, its flip and shadowSegmentOrigin in their order: the same bits.
   bool setUpFour(const Ray* rays, int k0) {
     using namespace lanes;
     const std::optional<ClosestHit>* hits = hits_ + k0;
@@ -264,7 +268,8 @@ class Tracer {
       qx = cx + vx * scale, qy = cy + vy * scale, qz = cz + vz * scale;
       const Double4 g6 = splat(errorGamma(6));
       ex = (abs(qx - cx) + abs(qx)) * g6, ey = (abs(qy - cy) + abs(qy)) * g6, ez = (abs(qz - cz) + abs(qz)) * g6;
-      nx = vx / r, ny = vy / r, nz = vz / r;
+      const Double4 inv = splat(1.0) / r;
+      nx = vx * inv, ny = vy * inv, nz = vz * inv;
     } else {
       nx = gather([&](int i) { return plane[i]->normal.x; });
       ny = gather([&](int i) { return plane[i]->normal.y; });
@@ -276,25 +281,33 @@ class Tracer {
       const Double4 g8 = splat(errorGamma(8));
       ex = (abs(qx) + abs(ax)) * g8, ey = (abs(qy) + abs(ay)) * g8, ez = (abs(qz) + abs(az)) * g8;
     }
+    // hitPointNear: the hit point is POV-Ray's, bounded by its distance from q.
+    const Double4 g2 = splat(1 + errorGamma(2));
+    ex = (abs(px - qx) + ex) * g2, ey = (abs(py - qy) + ey) * g2, ez = (abs(pz - qz) + ez) * g2;
     // Every surface is shaded on the side the ray sees.
     const unsigned away = less(splat(0.0), nx * dx + ny * dy + nz * dz);
     const Double4 flip = splat(-1.0);  // -x exactly, zeros included
     nx = select(away, nx * flip, nx), ny = select(away, ny * flip, ny), nz = select(away, nz * flip, nz);
     double qs[3][4], es[3][4], ns[3][4], error[4];
-    store(qs[0], qx), store(qs[1], qy), store(qs[2], qz);
+    store(qs[0], px), store(qs[1], py), store(qs[2], pz);
     store(es[0], ex), store(es[1], ey), store(es[2], ez);
     store(ns[0], nx), store(ns[1], ny), store(ns[2], nz);
     store(error, lanes::sqrt(ex * ex + ey * ey + ez * ez));
     if constexpr ((E & kShadows) != 0) {
+      // shadowSegmentOrigin: the hit point below the slab limit, else offsetRayOrigin along n.
       const Double4 shift = abs(nx) * ex + abs(ny) * ey + abs(nz) * ez;
+      const unsigned thin = less(shift, splat(shadowSlabLimit_));
       double off[3][4], o[3][4];
       store(off[0], nx * shift), store(off[1], ny * shift), store(off[2], nz * shift);
-      store(o[0], qx + nx * shift), store(o[1], qy + ny * shift), store(o[2], qz + nz * shift);
+      store(o[0], px + nx * shift), store(o[1], py + ny * shift), store(o[2], pz + nz * shift);
       double* origin[3] = {shadowX_ + k0, shadowY_ + k0, shadowZ_ + k0};
       for (int i = 0; i < 4; ++i) {
         for (int a = 0; a < 3; ++a) {
           const double v = o[a][i];
-          origin[a][i] = off[a][i] > 0 ? nextUp(v) : off[a][i] < 0 ? nextDown(v) : v;
+          origin[a][i] = (thin >> i & 1u)  ? qs[a][i]
+                         : off[a][i] > 0 ? nextUp(v)
+                         : off[a][i] < 0 ? nextDown(v)
+                                         : v;
         }
       }
     }
@@ -536,7 +549,7 @@ class Tracer {
     if (std::fabs(eta - 1.0) < kPovEpsilon) {
       // Straight through: POV-Ray does not spend a trace level on it.
       ++stats_.transmittedRays;
-      return fade * filter * trace(spawnRay(sp, n, ray.dir), level - 1, w, next, true);
+      return fade * filter * trace(spawnRay(sp, n, ray.dir, scene_.tol.minDepth), level - 1, w, next, true);
     }
     const double c1 = -dot(ray.dir, n);
     const double k = 1.0 + eta * eta * (c1 * c1 - 1.0);
@@ -545,12 +558,12 @@ class Tracer {
       // not tinted by the filter, and replaces the ordinary reflection.
       totalInternal = true;
       ++stats_.reflectedRays;
-      return fade * trace(spawnRay(sp, n, mirror(ray.dir, n)), level, w, inside, true);
+      return fade * trace(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside, true);
     }
     ++stats_.refractedRays;
     // Heckbert's formula; unit length in exact arithmetic and, as in POV-Ray, not renormalised.
     const Vec3 dir = ray.dir * eta + n * (eta * c1 - std::sqrt(k));
-    return fade * filter * trace(spawnRay(sp, n, dir), level, w, next, true);
+    return fade * filter * trace(spawnRay(sp, n, dir, scene_.tol.minDepth), level, w, next, true);
   }
 
   // The shadow segments toward light j of the packet's hits, those that lightContribution
@@ -729,7 +742,7 @@ class Tracer {
   // product of the filter colours of every transparent surface crossed otherwise.
   // `inside` lists the interiors the shadow ray starts in (those of the ray being shaded).
   // `known` is the occlusion of the segment when tracePacket already found it.
-  // The segments start at the error-bounded origin above sp (toward the light).
+  // The segments start at sp's point, or at the error-bounded origin above it (shadowSegmentOrigin).
   Color shadowFactor(const Light& light, const SurfacePoint& sp, const Vec3& n, const Vec3& l, double dist,
                      const InteriorList& inside, uint8_t known) {
     if (known != kUnknown) {
@@ -743,7 +756,7 @@ class Tracer {
     // Every segment of this point leaves on the side n points to (lightContribution asks
     // dot(n, l) >= kPovEpsilon first), so every light's starts at the same origin, found once.
     if (!pointShadowOrigin_) {
-      const Vec3 origin = offsetRayOrigin(sp, n, n);
+      const Vec3 origin = shadowSegmentOrigin(sp, n, shadowSlabLimit_);
       pointShadowOrigin_ = {origin, length(origin - sp.p)};
     }
     const Vec3 p = pointShadowOrigin_->p;
@@ -913,6 +926,7 @@ class Tracer {
   const Scene& scene_;
   RenderStats& stats_;
   double servesSquared_;  // the largest squared offset whose length bufferServes lets through
+  double shadowSlabLimit_;  // shadow segments start at the hit point below this slab (render/spawn.h)
   static constexpr uint32_t kNoCache = ~0u;
   // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
   std::optional<ClosestHit> hits_[kMaxPacket];
