@@ -134,7 +134,7 @@ TEST(Passes, FirstOneSampleThenWholePassesWhileTheyFit) {
 
 TEST(Passes, TheLastPassEndsNearestTheBudget) {
   const PassBudget b{2, 0.4, 0.05, 1 << 16};
-  // 0.6 s a sample, 0.95 s left: 1 sample ends 0.35 s under, 2 samples 0.25 s over (more than 5%).
+  // 0.6 s a sample, 0.95 s left: 1 sample ends 0.35 s under, 2 samples 0.25 s over (more than 10%).
   EXPECT_EQ(nextPassEnd(b, after({{0, 1, 0.6}}, 0.6)), 2);   // a whole pass of 1 fits
   EXPECT_EQ(nextPassEnd(b, after({{0, 1, 0.6}, {1, 2, 0.6}}, 1.2)), 2);  // 0.35 s left: 1 more is 0.25 over
   // 0.55 s left and a sample of 0.6 s: 0.05 s over (2.5% of the budget) is nearer than 0.55 under.
