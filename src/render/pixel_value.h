@@ -56,11 +56,4 @@ struct PixelSum {
   }
 };
 
-// The colour of a pixel from its rays' colours: every path below gives the same bits.
-inline Color pixelColor(const Color* colors, size_t count) {
-  PixelSum sum;
-  for (size_t k = 0; k < count; ++k) sum.add(colors[k]);
-  return sum.mean(count);
-}
-
 }  // namespace pvrt
