@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -130,7 +131,10 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   // Every pixel of the plan once, with `sampler`'s samples.
   auto pass = [&](const PixelSampler& sampler, PassBuffers* buffers) {
     std::atomic<long> done{0};
-    Watchdog watchdog(settings, done, total, plan.items.size(), workers, t0);
+    // A render in passes is timed by its budget (render/passes.h); one pass's share of
+    // the pixels says nothing of when the render ends.
+    std::optional<Watchdog> watchdog;
+    if (!buffers) watchdog.emplace(settings, done, total, plan.items.size(), workers, t0);
     parallelFor(settings.backend, workers, plan, [&](size_t i, int worker) {
       if (interrupt::requested()) {
         cancelled = true;
