@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/mapped_file.h"
 #include "core/interrupt.h"
-#include "parallel/parallel_for.h"
 
 namespace pvrt {
 
@@ -78,47 +78,38 @@ std::string readSceneBytes(const std::string& path) {
   return bytes;
 }
 
-SceneBytes::SceneBytes(const std::string& path) {
-  // Files below this are read by one thread (readSceneBytes), as are pipes and anything
-  // that changes size while it is read; readSceneBytes also says why a file cannot be read.
+SceneBytes::SceneBytes(const std::string& path, Way way) {
+  // Files below this are read (readSceneBytes), as are pipes and files that cannot be mapped;
+  // readSceneBytes also says why a file cannot be read.
   constexpr size_t kBig = size_t(32) << 20;
-  constexpr size_t kPart = size_t(8) << 20;
-  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
-  struct stat st {};
-  if (f.fd >= 0 && ::fstat(f.fd, &st) == 0 && S_ISREG(st.st_mode) && size_t(st.st_size) >= kBig &&
-      size_t(st.st_size) <= kMaxSceneBytes) {
-    const size_t size = size_t(st.st_size);
-    std::unique_ptr<char[]> data(new char[size]);
-    std::vector<char> whole((size + kPart - 1) / kPart, 0);  // part i was read whole
-    parallelIndices(whole.size(), 0, [&](size_t i) {
-      const size_t begin = i * kPart, end = std::min(size, begin + kPart);
-      size_t at = begin;
-      // A megabyte at a time, so that a signal is seen (a part not read whole falls back to
-      // readSceneBytes, which throws the interrupt).
-      while (at < end && !interrupt::requested()) {
-        const ssize_t n = ::pread(f.fd, data.get() + at, std::min(end - at, size_t(1) << 20), off_t(at));
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        at += size_t(n);
+  if (way == Way::MapBigFiles) {
+    Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+    struct stat st {};
+    if (f.fd >= 0 && ::fstat(f.fd, &st) == 0 && S_ISREG(st.st_mode) && size_t(st.st_size) >= kBig &&
+        size_t(st.st_size) <= kMaxSceneBytes) {
+      auto mapped = std::make_unique<MappedFile>(f.fd, size_t(st.st_size));
+      if (mapped->ok()) {
+        mapped_ = std::move(mapped);
+        fd_ = std::exchange(f.fd, -1);
+        return;
       }
-      whole[i] = at == end;
-    });
-    char past = 0;
-    if (std::find(whole.begin(), whole.end(), 0) == whole.end() && ::pread(f.fd, &past, 1, off_t(size)) == 0) {
-      data_ = std::move(data);
-      size_ = size;
-      return;
     }
   }
   text_ = readSceneBytes(path);
 }
 
-bool SceneBytes::release(size_t begin, size_t end) {
-  if (!data_ || begin >= end || end > size_) return false;
-  const auto page = uintptr_t(::sysconf(_SC_PAGESIZE));
-  const uintptr_t from = (uintptr_t(data_.get() + begin) + page - 1) / page * page;
-  const uintptr_t to = uintptr_t(data_.get() + end) / page * page;
-  return from < to && ::madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED) == 0;
+SceneBytes::~SceneBytes() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::string_view SceneBytes::view() const { return mapped_ ? mapped_->bytes() : std::string_view(text_); }
+
+bool SceneBytes::release(size_t begin, size_t end) { return mapped_ && mapped_->drop(begin, end); }
+
+bool SceneBytes::intact() const {
+  if (!mapped_) return true;
+  char past = 0;
+  return !mapped_->shrunk() && ::pread(fd_, &past, 1, off_t(mapped_->bytes().size())) == 0;
 }
 
 size_t utf8SequenceLength(std::string_view s, size_t i) {

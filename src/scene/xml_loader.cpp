@@ -1013,17 +1013,30 @@ SceneDesc loadSceneString(const std::string& xml, const std::string& name, const
 }
 
 SceneDesc loadSceneFile(const std::string& path, const LoadOptions& options) {
-  SceneBytes bytes(path);
-  // The text of each piece read is given back as soon as it is read, so that a big file's
-  // text and its objects are not held whole at once; if the pieces' way then gives up, the
-  // file is read again for the whole parse.
-  std::atomic<bool> released{false};
-  const auto release = [&](size_t begin, size_t end) {
-    if (bytes.release(begin, end)) released.store(true, std::memory_order_relaxed);
-  };
-  if (std::optional<SceneDesc> s = parseInPieces(bytes.view(), path, options, release)) return std::move(*s);
-  if (released.load()) bytes = SceneBytes(path);
-  return parseWhole(bytes.view(), path);
+  {
+    SceneBytes bytes(path);
+    // The text of each piece read is given back as soon as it is read, so that a big file's
+    // text and its objects are not held whole at once; if the pieces' way then gives up, the
+    // file is read again for the whole parse.
+    std::atomic<bool> released{false};
+    const auto release = [&](size_t begin, size_t end) {
+      if (bytes.release(begin, end)) released.store(true, std::memory_order_relaxed);
+    };
+    // A mapped file that changed size while it was read gave zeros or too little: whatever
+    // came of that (a scene, an error) is not the file's, which is read again below.
+    try {
+      if (std::optional<SceneDesc> s = parseInPieces(bytes.view(), path, options, release); s && bytes.intact())
+        return std::move(*s);
+      if (!released.load() && bytes.intact()) {
+        SceneDesc s = parseWhole(bytes.view(), path);
+        if (bytes.intact()) return s;
+      }
+    } catch (...) {
+      if (bytes.intact()) throw;
+    }
+  }
+  const SceneBytes read(path, SceneBytes::Way::Read);
+  return parseWhole(read.view(), path);
 }
 
 }  // namespace pvrt
