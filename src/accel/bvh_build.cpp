@@ -71,11 +71,16 @@ struct BuildNode {
   uint32_t count = 0;         // 0 for interior nodes
 };
 
+// A primitive's box and centroid as the build sees them: with every -0 made +0, so that a
+// box's min and max over any items are the same whatever order the items come in (the
+// extremes' zeros would otherwise keep the sign of whichever came first).
 struct BuildItem {
   Bounds bounds;
   Vec3 centroid;
   uint32_t index;
 };
+
+Vec3 positiveZero(const Vec3& v) { return {v.x + 0.0, v.y + 0.0, v.z + 0.0}; }
 
 // Bounds.extend() a vector at a time, for the build's passes over millions of items: the
 // min and max of all three axes in one operation each. A NaN in an item leaves the box as
@@ -142,24 +147,36 @@ class Binning {
 };
 
 // Every axis's bins, filled in one pass over the items (a pass an axis read them three times).
+// A bin's box is set up only when its first item comes (deep in the tree most bins stay
+// empty, and setting up all 48 boxes of every node was a tenth of the build); an empty bin's
+// box is never read.
 struct Bins {
-  std::array<std::array<BuildBox, kBins>, 3> box;
   std::array<std::array<uint32_t, kBins>, 3> count{};
+  Bins() {}  // the boxes are left unset
+  BuildBox& box(size_t axis, size_t b) { return boxes_[axis][b]; }
+  const BuildBox& box(size_t axis, size_t b) const { return boxes_[axis][b]; }
   void add(const Binning& binning, const BuildItem& it) {
     for (int axis = 0; axis < 3; ++axis) {
       if (!binning.binned(axis)) continue;
       const size_t b = size_t(binning.bin(it, axis));
-      box[size_t(axis)][b].extend(it.bounds.lo, it.bounds.hi);
-      ++count[size_t(axis)][b];
+      if (count[size_t(axis)][b]++ == 0) boxes_[size_t(axis)][b] = BuildBox();
+      boxes_[size_t(axis)][b].extend(it.bounds.lo, it.bounds.hi);
     }
   }
   void merge(const Bins& later) {
     for (size_t axis = 0; axis < 3; ++axis)
       for (size_t b = 0; b < kBins; ++b) {
-        box[axis][b].merge(later.box[axis][b]);
+        if (later.count[axis][b] == 0) continue;
+        if (count[axis][b] == 0) boxes_[axis][b] = later.boxes_[axis][b];
+        else boxes_[axis][b].merge(later.boxes_[axis][b]);
         count[axis][b] += later.count[axis][b];
       }
   }
+
+ private:
+  union {
+    std::array<std::array<BuildBox, kBins>, 3> boxes_;  // valid where count > 0
+  };
 };
 
 // The cheapest split between bins: axis -1 when no split leaves items on both sides.
@@ -167,6 +184,16 @@ struct BinSplit {
   int axis = -1, bin = 0;
   double cost = INFINITY;  // area x count summed over both sides
 };
+
+// Bounds::surfaceArea() of the box [lo, hi] (lanes 0-2), with the same operations.
+double surfaceArea(lanes::Double4 lo, lanes::Double4 hi) {
+  double l[4], h[4];
+  lanes::store(l, lo);
+  lanes::store(h, hi);
+  if (l[0] > h[0] || l[1] > h[1] || l[2] > h[2]) return 0;
+  const double ex = h[0] - l[0], ey = h[1] - l[1], ez = h[2] - l[2];
+  return 2 * (ex * ey + ey * ez + ez * ex);
+}
 
 BinSplit cheapest(const Bins& bins, const Binning& binning) {
   BinSplit best;
@@ -182,25 +209,25 @@ BinSplit cheapest(const Bins& bins, const Binning& binning) {
     for (int b = 0; b < kBins; ++b)
       if (binCount[size_t(b)] > 0) used[size_t(m++)] = b;
     if (m < 2) continue;
-    std::array<Bounds, kBins> binBounds;
-    for (int k = 0; k < m; ++k) binBounds[size_t(k)] = bins.box[size_t(axis)][size_t(used[size_t(k)])].bounds();
-    // Sweep from the right to get the cost of every right side, then from the left.
-    std::array<double, kBins> rightArea{};
-    std::array<uint32_t, kBins> rightCount{};
-    Bounds acc;
+    // Sweep from the right to get the cost of every right side, then from the left. The
+    // boxes grow a lane vector at a time, as Bounds::extend() would grow them (a bound
+    // changes only for a value beyond it; no bin's box holds a NaN).
+    std::array<double, kBins> rightArea;
+    std::array<uint32_t, kBins> rightCount;
+    BuildBox acc;
     uint32_t n = 0;
     for (int k = m - 1; k > 0; --k) {
-      acc.extend(binBounds[size_t(k)]);
+      acc.merge(bins.box(size_t(axis), size_t(used[size_t(k)])));
       n += binCount[size_t(used[size_t(k)])];
-      rightArea[size_t(k)] = acc.surfaceArea();
+      rightArea[size_t(k)] = surfaceArea(acc.lo, acc.hi);
       rightCount[size_t(k)] = n;
     }
-    acc = Bounds{};
+    acc = BuildBox();
     n = 0;
     for (int k = 0; k < m - 1; ++k) {
-      acc.extend(binBounds[size_t(k)]);
+      acc.merge(bins.box(size_t(axis), size_t(used[size_t(k)])));
       n += binCount[size_t(used[size_t(k)])];
-      const double cost = acc.surfaceArea() * n + rightArea[size_t(k + 1)] * rightCount[size_t(k + 1)];
+      const double cost = surfaceArea(acc.lo, acc.hi) * n + rightArea[size_t(k + 1)] * rightCount[size_t(k + 1)];
       if (cost < best.cost) best = {axis, used[size_t(k)], cost};
     }
   }
@@ -222,19 +249,26 @@ class SerialPasses {
     for (uint32_t i = begin; i < end; ++i) bins.add(binning, items_[i]);
     return bins;
   }
-  // Moves the items for which `left` holds before the others and returns where those start.
-  // The order is std::partition's (libstdc++'s, as the tree was first built): the first item
-  // out of place from the left is swapped with the first from the right, and so on.
+  // Moves the items for which `left` holds before the others and returns where those start;
+  // adds each item to the boxes of its side as it goes (each once), so that the two halves'
+  // boxes need no pass of their own. The order is std::partition's (libstdc++'s, as the tree
+  // was first built): the first item out of place from the left is swapped with the first
+  // from the right, and so on. The boxes are those of a pass over each half in order, since
+  // no item holds a NaN-free -0 (BuildItem) and min and max are then indifferent to order.
   template <class Left>
-  uint32_t partition(uint32_t begin, uint32_t end, Left&& left) const {
+  uint32_t partition(uint32_t begin, uint32_t end, Left&& left, NodeBoxes& lefts, NodeBoxes& rights) const {
     for (;;) {
-      while (begin != end && left(items_[begin])) ++begin;
+      while (begin != end && left(items_[begin])) lefts.add(items_[begin++]);
       if (begin == end) return begin;
       --end;
-      while (begin != end && !left(items_[end])) --end;
-      if (begin == end) return begin;
+      while (begin != end && !left(items_[end])) rights.add(items_[end--]);
+      if (begin == end) {
+        rights.add(items_[begin]);  // stopped the first loop: it goes right
+        return begin;
+      }
       std::swap(items_[begin], items_[end]);
-      ++begin;
+      lefts.add(items_[begin++]);
+      rights.add(items_[end]);
     }
   }
 
@@ -527,13 +561,16 @@ class Builder {
     nodes_[self] = {n.bounds, right, 0};
   }
 
-  void subtree(uint32_t begin, uint32_t end, int depth, uint32_t& next) {
+  // `known`: the node's boxes, when its parent's partition gathered them.
+  void subtree(uint32_t begin, uint32_t end, int depth, uint32_t& next, const NodeBoxes* known = nullptr) {
     const uint32_t self = next++;
     const SerialPasses passes(items_.begin());
-    const NodeBoxes boxes = passes.boxes(begin, end);
+    const NodeBoxes boxes = known ? *known : passes.boxes(begin, end);
     const Bounds bounds = boxes.box.bounds(), centroids = boxes.centroids.bounds();
     const uint32_t count = end - begin;
     uint32_t mid = end;
+    NodeBoxes halves[2];
+    bool halvesKnown = false;
     if (count > 1 && depth >= kMaxSahDepth) {
       mid = median(items_.begin(), begin, end, centroids, leafSize_);
     } else if (count > 1) {
@@ -542,8 +579,11 @@ class Builder {
       const Cut cut = choose(passes.bins(begin, end, binning), binning, bounds, count, leafSize_, best);
       if (cut == Cut::Half) mid = begin + count / 2;
       if (cut == Cut::Partition) {
-        mid = passes.partition(begin, end, [&](const BuildItem& it) { return binning.bin(it, best.axis) <= best.bin; });
-        if (mid == begin || mid == end) mid = begin + count / 2;
+        mid = passes.partition(
+            begin, end, [&](const BuildItem& it) { return binning.bin(it, best.axis) <= best.bin; }, halves[0],
+            halves[1]);
+        halvesKnown = mid != begin && mid != end;
+        if (!halvesKnown) mid = begin + count / 2;
       }
     }
     // Once a signal is caught the tree is thrown away (Bvh::Bvh): its subtrees end at once.
@@ -551,9 +591,9 @@ class Builder {
       nodes_[self] = {bounds, begin, count};
       return;
     }
-    subtree(begin, mid, depth + 1, next);
+    subtree(begin, mid, depth + 1, next, halvesKnown ? &halves[0] : nullptr);
     const uint32_t right = next;
-    subtree(mid, end, depth + 1, next);
+    subtree(mid, end, depth + 1, next, halvesKnown ? &halves[1] : nullptr);
     nodes_[self] = {bounds, right, 0};
   }
 
@@ -784,7 +824,7 @@ Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads, uint32_t leafSize) {
     for (size_t i = lo; i < hi; ++i) {
       const Bounds box = primitives.bounds(i);
       if (box.empty()) unbounded[b].push_back(uint32_t(i));
-      else items[k++] = {box, box.centroid(), uint32_t(i)};
+      else items[k++] = {{positiveZero(box.lo), positiveZero(box.hi)}, positiveZero(box.centroid()), uint32_t(i)};
     }
   });
   if (alone) items.shrink(total - uint32_t(unbounded[0].size()));

@@ -438,6 +438,26 @@ TEST(Bvh, TheTreeDoesNotDependOnTheBuildThreads) {
   }
 }
 
+// Boxes standing on y = 0, written as -0 and +0 by turns: every node's box has its min y at
+// zero, with the sign of whichever zero met it first, unless the build makes every -0 a +0.
+// The threads build the top nodes and the subtrees below them in different orders.
+TEST(Bvh, SignedZerosGiveTheSameTreeWhateverTheThreads) {
+  SceneMaker gen(36);
+  std::vector<Primitive> prims;
+  for (uint32_t i = 0; i < 200000; ++i) {
+    const Vec3 c = gen.point(50);
+    prims.push_back(make(BoxShape{{c.x, i % 3 ? -0.0 : 0.0, c.z}, {c.x + 0.1, 0.2, c.z + 0.1}}, i));
+  }
+  const Bvh one(prims, 1);
+  for (unsigned threads : {2u, 8u}) {
+    const Bvh many(prims, threads);
+    ASSERT_EQ(one.nodes().size(), many.nodes().size());
+    for (size_t i = 0; i < one.nodes().size(); ++i)
+      ASSERT_EQ(0, std::memcmp(one.nodes()[i].quad, many.nodes()[i].quad, sizeof one.nodes()[i].quad))
+          << "node " << i << ", " << threads << " threads";
+  }
+}
+
 // Packets must give every ray exactly the answer the single-ray queries give, for
 // narrow packets (a pixel's samples) and wide ones (rays in every direction).
 TEST(BvhPacket, ClosestMatchesSingleRays) {
