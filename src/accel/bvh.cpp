@@ -542,6 +542,38 @@ void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const doubl
   occludeLiveByUnbounded(apex, lanes, tMax, tMin, live, out, blocker, tests);
 }
 
+void Bvh::occlusionPacketFromPoint(const PacketRays& lanes, const double* tMax, double tMin, uint64_t live,
+                                   Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  std::fill(out, out + lanes.count, Occlusion::Clear);
+  if (live == 0) return;
+  // The unbounded primitives first, as traverse() visits them (planeMisses needs a common
+  // end, which these segments do not have).
+  for (uint32_t i = boundedCount_; i < items_.size() && live != 0; ++i)
+    occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
+  if (live == 0) return;
+  // Unit directions from a common origin: the segments' parameter t is the cone's s.
+  Vec3 lo, hi;
+  lanes.directionRange(lo, hi);
+  const int first = __builtin_ctzll(live);
+  const PacketCone cone({lanes.ox[first], lanes.oy[first], lanes.oz[first]}, lo, hi, tMin);
+  double sHi = -INFINITY;
+  for (uint64_t m = live; m != 0; m &= m - 1) sHi = std::max(sHi, tMax[__builtin_ctzll(m)]);
+  LazySlabs slabs(lanes);
+  double unused[kBvhWidth];
+  auto enters = [&](const BvhNode& node, unsigned candidates) {
+    unsigned found = 0;
+    for (uint64_t m = live; m != 0 && found != candidates; m &= m - 1) {
+      const int k = __builtin_ctzll(m);
+      found |= hitsChildren(node, slabs[k], tMin, tMax[k], unused) & candidates;
+    }
+    return found;
+  };
+  traversePacket(cone, sHi, enters, [&](uint32_t at, uint32_t n, const BvhNode&, int) {
+    for (uint32_t i = at; i < at + n && live != 0; ++i) occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
+    return live == 0;
+  });
+}
+
 void Bvh::occlusionPacketInCell(const LightBuffer& buffer, int cell, double reach, const PacketRays& lanes,
                                 const double* tMax, double tMin, uint64_t live, Occlusion* out, uint32_t* blocker,
                                 uint64_t& tests) const {

@@ -190,6 +190,11 @@ class Bvh {
   // as the padding's are, so that the packet's bounds leave them out.
   void occlusionPacket(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
                        uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+  // occlusion() for segments that all start at one point (the area-light samples of a hit
+  // point, whose ends differ): segment k runs from that origin (every live lane's) along its
+  // unit direction over (tMin, tMax[k]). Live lanes and padding as above.
+  void occlusionPacketFromPoint(const PacketRays& segments, const double* tMax, double tMin, uint64_t live,
+                                Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
   // The same for live segments that all lie in one cell of the light's buffer, `cell`
   // (each meeting occlusionToLight's conditions, `reach` the largest of theirs): the cell's
   // list is tested against the packet instead of the tree walked.

@@ -11,6 +11,9 @@ namespace {
 double cosDegrees(double deg) { return std::cos(deg * std::numbers::pi / 180.0); }
 }  // namespace
 
+// The most samples of an area light whose positions are worked out once (24 bytes each).
+constexpr size_t kMaxKeptGrid = 4096;
+
 Light buildLight(const LightDesc& d) {
   Light l;
   l.location = d.location;
@@ -35,6 +38,10 @@ Light buildLight(const LightDesc& d) {
     l.adaptive = d.area->adaptive;
     l.circular = d.area->circular || d.area->orient;  // POV-Ray makes an oriented light circular
     l.orient = d.area->orient;
+    if (!l.orient && size_t(l.size1) * size_t(l.size2) <= kMaxKeptGrid) {
+      for (int j = 0; j < l.size2; ++j)
+        for (int i = 0; i < l.size1; ++i) l.grid.push_back(l.areaSample(i, j, Vec3(0.0)));
+    }
   }
   return l;
 }

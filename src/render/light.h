@@ -29,6 +29,9 @@ struct Light {
   // World position of area-light sample (i, j); `toLight` is the unit direction from the
   // shaded point to the light centre (used by `orient`).
   Vec3 areaSample(int i, int j, const Vec3& toLight) const;
+  // areaSample(i, j) at [j * size1 + i] when it does not depend on the point (no `orient`)
+  // and the grid is small enough to keep; else empty.
+  std::vector<Vec3> grid;
 };
 
 Light buildLight(const LightDesc& desc);

@@ -31,6 +31,15 @@ class Tracer {
     bool lit = false;  // neither at the point nor behind the surface: lightContribution goes on
     uint8_t occlusion = kUnknown;
   };
+  // A hit point's segment toward one area-light sample (made when first asked for), and
+  // the full shadow test's answer (kUnknown until traceSamples finds it) with its blocker.
+  struct AreaSegment {
+    Vec3 dir;
+    double dist = 0;
+    bool made = false;
+    uint8_t found = kUnknown;
+    uint32_t blocker = 0;
+  };
   // The same for every ray of a packet and one light, a component per array, so that
   // four rays are done at once (the divisions and square roots are most of the cost).
   struct PacketLight {
@@ -786,32 +795,43 @@ class Tracer {
     // Else the cell of the segment's own direction, looked up once for both queries below
     // (a see-through walk's steps all share that direction); without one, the tree.
     if (buffer && cell < 0 && (cell = buffer->cellIndexOf(-dir)) < 0) buffer = nullptr;
-    // POV-Ray's shadow cache: the object that last blocked this light is tried first.
     const Ray segment{origin, dir};
-    const double tol = scene_.tol.shadow;
-    uint32_t& cached = shadowCache_[cacheSlot_];
-    if (cached != kNoCache) {
-      // TracePointLightShadowRay tries the cached object over [MIN_ISECT_DEPTH, depth),
-      // not the full test's (SHADOW_TOLERANCE, depth - SHADOW_TOLERANCE): in a crease it
-      // still finds the wall that the full test passes over.
-      ++stats_.intersectionTests;
-      if (scene_.bvh.intersect(cached, segment, scene_.tol.minDepth, dist)) return {};
-    }
+    if (blockedByCachedObject(segment, dist)) return {};
     // Most segments are either clear or blocked by something opaque: an unordered
     // query settles those; only see-through objects need the ordered walk below.
     // From the buffer, a see-through answer comes with the walk's first crossing.
+    const double tol = scene_.tol.shadow;
     uint32_t blocker = 0;
     ClosestHit first;
     const Occlusion found =
         buffer ? scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
                                              stats_.intersectionTests, blocker, first)
                : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
+    return transmittanceAfter(found, blocker, origin, dir, dist, inside, buffer, cell, buffer ? &first : nullptr);
+  }
+
+  // POV-Ray's shadow cache: the object that last blocked this light is tried first.
+  bool blockedByCachedObject(const Ray& segment, double dist) {
+    const uint32_t cached = shadowCache_[cacheSlot_];
+    if (cached == kNoCache) return false;
+    // TracePointLightShadowRay tries the cached object over [MIN_ISECT_DEPTH, depth),
+    // not the full test's (SHADOW_TOLERANCE, depth - SHADOW_TOLERANCE): in a crease it
+    // still finds the wall that the full test passes over.
+    ++stats_.intersectionTests;
+    return scene_.bvh.intersect(cached, segment, scene_.tol.minDepth, dist).has_value();
+  }
+
+  // What a segment that the cached object left open lets through, given the full test's
+  // answer (`blocker`: the opaque object it found).
+  Color transmittanceAfter(Occlusion found, uint32_t blocker, const Vec3& origin, const Vec3& dir, double dist,
+                           const InteriorList& inside, const LightBuffer* buffer = nullptr, int cell = -1,
+                           const ClosestHit* first = nullptr) {
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
-      case Occlusion::Blocked: cached = blocker; return {};  // tried first next time
+      case Occlusion::Blocked: shadowCache_[cacheSlot_] = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
-    return orderedTransmittance(origin, dir, dist, inside, buffer, cell, buffer ? &first : nullptr);
+    return orderedTransmittance(origin, dir, dist, inside, buffer, cell, first);
   }
 
   // The product of the filters of every surface the segment crosses, nearest first, or
@@ -881,10 +901,25 @@ class Tracer {
     }
   }
 
+  // Sample (i, j)'s segment from p, as segmentTransmittance takes it, with the full test's
+  // answer when traceSamples found it.
   Color sampleShadow(const Light& light, const Vec3& p, const Vec3& l, int i, int j, const InteriorList& inside) {
-    const Vec3 d = light.areaSample(i, j, l) - p;
-    const double dist = length(d);
-    return segmentTransmittance(p, d / dist, dist, inside);
+    const AreaSegment& s = areaSegment(light, p, l, i, j);
+    if (s.found == kUnknown) return segmentTransmittance(p, s.dir, s.dist, inside);
+    ++stats_.shadowRays;
+    if (blockedByCachedObject(Ray{p, s.dir}, s.dist)) return {};
+    return transmittanceAfter(Occlusion(s.found), s.blocker, p, s.dir, s.dist, inside);
+  }
+
+  const AreaSegment& areaSegment(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
+    AreaSegment& s = areaSegments_[size_t(j) * light.size1 + i];
+    if (!s.made) {
+      const Vec3 d = (light.grid.empty() ? light.areaSample(i, j, l) : light.grid[size_t(j) * light.size1 + i]) - p;
+      s.dist = length(d);
+      s.dir = d / s.dist;
+      s.made = true;
+    }
+    return s;
   }
 
   // POV-Ray's recursive area-light sampling over the index rectangle [i0,i1] x [j0,j1]:
@@ -892,9 +927,68 @@ class Tracer {
   // the floor/ceil of their midpoint and averaged, which gives POV-Ray's non-uniform
   // sample weights (1/4, 1/2, 1/4 for three samples).
   Color areaShadow(const Light& light, const Vec3& p, const Vec3& l, const InteriorList& inside) {
-    cache_.assign(size_t(light.size1) * light.size2, Color(-1.0));
+    const size_t samples = size_t(light.size1) * light.size2;
+    cache_.assign(samples, Color(-1.0));
+    areaSegments_.assign(samples, AreaSegment{});
     areaInside_ = &inside;
+    const int is[2] = {0, light.size1 - 1}, js[2] = {0, light.size2 - 1};
+    traceSamples(light, p, l, is, 2, js, 2);
     return areaRect(light, p, l, 0, light.size1 - 1, 0, light.size2 - 1, 0);
+  }
+
+  // The full shadow tests of the samples (is[a], js[b]) not tested yet, together: their
+  // segments share the origin p, so one walk of the tree serves them all and a leaf's
+  // spheres are tested against four segments at a time. Each gets the answer its own query
+  // would give; the shadow cache is applied afterwards, sample by sample in POV-Ray's order.
+  void traceSamples(const Light& light, const Vec3& p, const Vec3& l, const int* is, int ni, const int* js,
+                    int nj) {
+    static_assert(kMaxPacket >= 16, "the corners of four quarters in one packet");
+    int at[16];
+    int n = 0;
+    for (int b = 0; b < nj; ++b) {
+      for (int a = 0; a < ni; ++a) {
+        const int k = js[b] * light.size1 + is[a];
+        if (areaSegments_[k].found != kUnknown || cache_[k].r >= 0 || std::find(at, at + n, k) != at + n)
+          continue;
+        at[n++] = k;
+      }
+    }
+    if (n < 2) return;  // a lone segment goes its own way
+    if (!light.grid.empty()) {
+      // Four segments' square roots and divisions at once, each lane length()'s and operator/'s
+      // operations in their order (a segment made alone would wait on its own).
+      using namespace lanes;
+      for (int g = 0; g < n; g += 4) {
+        alignas(32) double q[3][4];
+        for (int c = 0; c < 4; ++c) {
+          const Vec3& v = light.grid[size_t(at[std::min(g + c, n - 1)])];
+          q[0][c] = v.x, q[1][c] = v.y, q[2][c] = v.z;
+        }
+        const Double4 dx = load(q[0]) - splat(p.x), dy = load(q[1]) - splat(p.y), dz = load(q[2]) - splat(p.z);
+        const Double4 dist = lanes::sqrt(dx * dx + dy * dy + dz * dz);
+        alignas(32) double ox[4], oy[4], oz[4], od[4];
+        store(ox, dx / dist), store(oy, dy / dist), store(oz, dz / dist), store(od, dist);
+        for (int c = 0; c < 4 && g + c < n; ++c) {
+          AreaSegment& s = areaSegments_[at[g + c]];
+          s.dir = {ox[c], oy[c], oz[c]};
+          s.dist = od[c];
+          s.made = true;
+        }
+      }
+    }
+    for (int m = 0; m < n; ++m) {
+      const AreaSegment& s = areaSegment(light, p, l, at[m] % light.size1, at[m] / light.size1);
+      segments_.set(m, p, s.dir);
+      segmentEnd_[m] = s.dist - scene_.tol.shadow;
+    }
+    segments_.finish(n);
+    for (int k = n; k < segments_.groups * 4; ++k) segmentEnd_[k] = -INFINITY;
+    scene_.bvh.occlusionPacketFromPoint(segments_, segmentEnd_, scene_.tol.shadow, (uint64_t(1) << n) - 1,
+                                        occlusion_, blocker_, stats_.intersectionTests);
+    for (int m = 0; m < n; ++m) {
+      areaSegments_[at[m]].found = uint8_t(occlusion_[m]);
+      areaSegments_[at[m]].blocker = blocker_[m];
+    }
   }
 
   Color cachedSample(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
@@ -914,6 +1008,9 @@ class Tracer {
         (depth < light.adaptive || differ(c00, c10) || differ(c10, c11) || differ(c11, c01) || differ(c01, c00))) {
       const int ia = (i0 + i1) / 2, ib = (i0 + i1 + 1) / 2;
       const int ja = (j0 + j1) / 2, jb = (j0 + j1 + 1) / 2;
+      // Every corner of the four quarters is tested below: those not tested yet go together.
+      const int is[4] = {i0, ia, ib, i1}, js[4] = {j0, ja, jb, j1};
+      traceSamples(light, p, l, is, 4, js, 4);
       Color sum = areaRect(light, p, l, i0, ia, j0, ja, depth + 1);
       sum += areaRect(light, p, l, ib, i1, j0, ja, depth + 1);
       sum += areaRect(light, p, l, i0, ia, jb, j1, depth + 1);
@@ -962,6 +1059,7 @@ class Tracer {
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
   std::vector<Color> cache_;
   const InteriorList* areaInside_ = nullptr;  // interiors the current area-light samples start in
+  std::vector<AreaSegment> areaSegments_;  // the current point's, one per sample of the light
 };
 
 }  // namespace pvrt

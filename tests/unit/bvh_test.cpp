@@ -539,6 +539,59 @@ TEST(BvhPacket, OcclusionMatchesSingleSegments) {
   EXPECT_GT(answers.transparent, 10);
 }
 
+// Segments from one point toward the samples of an area light (different ends), some of
+// them left out of `live`: every live one gets the answer occlusion() gives it alone, and
+// the others come out Clear.
+TEST(BvhPacket, OcclusionFromAPointMatchesSingleSegments) {
+  SceneMaker gen(36);
+  auto prims = gen.spheres(400, 8, 0.05, 0.8);
+  prims.push_back(make(PlaneShape{Vec3{0, 1, 0}, -9}, 9999));
+  for (size_t i = 0; i < prims.size(); i += 7) prims[i].opaque = false;  // some see-through
+  const Bvh bvh(prims);
+  Answers answers;
+  for (int packet = 0; packet < 300; ++packet) {
+    const Vec3 origin = gen.point(9);
+    const Vec3 light = gen.point(12);
+    // A patch of light the size of a lamp, of the scene, or of a few ulps.
+    const double spread = packet % 3 == 0 ? 6.0 : packet % 3 == 1 ? 0.3 : 1e-12;
+    const int count = 1 + packet % 16;
+    PacketRays lanes;
+    alignas(32) double tMax[kMaxPacket];
+    uint64_t live = 0;
+    std::vector<Ray> segments;
+    for (int k = 0; k < count; ++k) {
+      const Vec3 to = light + gen.point(spread) - origin;
+      const double dist = length(to);
+      segments.push_back({origin, to / dist});
+      tMax[k] = dist - 1e-3;
+      live |= uint64_t((k + packet) % 5 != 0) << k;
+      lanes.set(k, origin, segments.back().dir);
+    }
+    lanes.finish(count);
+    for (int k = count; k < lanes.groups * 4; ++k) tMax[k] = -INFINITY;
+    Occlusion got[kMaxPacket];
+    uint32_t blocker[kMaxPacket];
+    uint64_t tests = 0;
+    bvh.occlusionPacketFromPoint(lanes, tMax, 1e-3, live, got, blocker, tests);
+    for (int k = 0; k < count; ++k) {
+      uint32_t b = 0;
+      const Occlusion want =
+          (live >> k & 1) ? bvh.occlusion(segments[size_t(k)], 1e-3, tMax[k], tests, b) : Occlusion::Clear;
+      ASSERT_EQ(int(want), int(got[k])) << "packet " << packet << " segment " << k;
+      if (want == Occlusion::Blocked) {
+        // The blocker it names is opaque and really blocks the segment.
+        ASSERT_TRUE(bvh.intersect(blocker[k], segments[size_t(k)], 1e-3, tMax[k]).has_value());
+      }
+      answers.blocked += want == Occlusion::Blocked;
+      answers.clear += want == Occlusion::Clear;
+      answers.transparent += want == Occlusion::Transparent;
+    }
+  }
+  EXPECT_GT(answers.blocked, 100);
+  EXPECT_GT(answers.clear, 100);
+  EXPECT_GT(answers.transparent, 10);
+}
+
 // Segments left out of `live` (as the tracer leaves out its unlit rays, in place) are
 // reported Clear, and the others get the answers they get alone.
 TEST(BvhPacket, OcclusionTestsOnlyTheLiveSegments) {
