@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/prefault.h"
+#include "core/single.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
@@ -62,7 +63,7 @@ bool isDiagonal(const Affine& a) {
 }
 
 // POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
-Vec3 toFloat(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
+Vec3 toFloat(const Vec3& v) { return single(v); }
 
 // Where PrimitiveBuilder puts an object's primitives: at the end of `grow`; without it, it
 // only counts them.

@@ -90,9 +90,12 @@ TEST(GoldenManifest, MalformedLinesNameFileAndLine) {
 
 TEST(GoldenTolerances, RepositoryFileAndTheDefault) {
   const Tolerances t = readTolerances(PVRT_SOURCE_DIR "/reference/tolerances.tsv");
-  EXPECT_EQ(t.of("fidelity_ior").limits.maxLevels, 20);
-  EXPECT_FALSE(t.of("fidelity_ior").reason.empty());
-  EXPECT_EQ(t.of("fidelity_ior").limits.maxOffBy1, 17);
+  EXPECT_EQ(t.of("fidelity_crease").limits.maxLevels, 45);
+  EXPECT_FALSE(t.of("fidelity_crease").reason.empty());
+  EXPECT_EQ(t.of("random_seed7").limits.maxOffBy1, 1);
+  // A scene without a line of its own (fidelity_ior has matched since its ior became a float).
+  EXPECT_EQ(t.of("fidelity_ior").limits.maxLevels, 1);
+  EXPECT_EQ(t.of("fidelity_ior").limits.maxOffBy1, 0);
   // A SCENE.VARIANT line holds for that variant alone.
   EXPECT_EQ(t.of("lights", "am2").limits.maxOffBy1, 1);
   EXPECT_EQ(t.of("lights", "aa").limits.maxOffBy1, 0);
