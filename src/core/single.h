@@ -9,9 +9,10 @@
 namespace pvrt {
 
 // v rounded to the nearest float. The empty asm makes the float a value the optimiser
-// cannot see through: GCC 12's SLP vectoriser, with -march=x86-64-v3, turns four roundings
-// of neighbouring doubles into a plain vector copy and the rounding is lost (1.33 stayed
-// 1.33 instead of 1.3300000429153442; docs/fidelity.md, tests/unit/single_test.cpp).
+// cannot see through: GCC 12's SLP vectoriser, with -march=x86-64-v3, turns two or four
+// roundings of neighbouring doubles (a colour's r and g, an interior's ior and fades) into a
+// plain vector copy and the rounding is lost (1.33 stayed 1.33 instead of
+// 1.3300000429153442; docs/fidelity.md, tests/unit/single_test.cpp).
 inline double single(double v) {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
   float f = float(v);
