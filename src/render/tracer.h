@@ -185,7 +185,7 @@ class Tracer {
     if constexpr ((E & kTextures) != 0) pig = scene_.materials.pigmentAt(m, p);
     const double alpha = 1.0 - pig.filter - pig.transmit;
 
-    Color result = povcolour::ambient(pig.rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha);
+    povcolour::FloatColour lit = povcolour::ambient(pig.rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha);
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
     // The cells found for the prefetch above answer the shadow segments from p, with no
@@ -194,9 +194,9 @@ class Tracer {
     pointShadowOrigin_.reset();
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
-      result = povcolour::add(
-          result, lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr));
+      lit = lit + lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
+    Color result = povcolour::toColor(lit);
     pointCells_ = false;
 
     const double cosI = -dot(ray.dir, n);
@@ -380,7 +380,7 @@ class Tracer {
     // first (a rep stos that took 8% of this function).
     FilterColor pig[4] = {m[0]->color, m[1]->color, m[2]->color, m[3]->color};
     double alpha[4];
-    Color lit[4];  // each lane's colour: its ambient, then each light's term added
+    povcolour::FloatColour lit[4];  // each lane's colour: its ambient, then each light's term added
     unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
     const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
@@ -420,24 +420,23 @@ class Tracer {
         if (!(gives >> i & 1u)) continue;
         const int k = k0 + i;
         const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
-        Color c;
+        povcolour::FloatColour c;
         if (f.diffuse > 0) {
           const double nl = nx_[k] * l.x + ny_[k] * l.y + nz_[k] * l.z;
           c = povcolour::diffuse(pig[i].rgb, nl, f.diffuse, alpha[i], intensity);
         }
         if constexpr ((E & kHighlights) != 0) {
           if (s.highlights && !light.shadowless) {
-            if (f.phong > 0)
-              c = povcolour::add(c, single(intensity * std::max(0.0, shading::phong(f, rays[k].dir, normals_[k], l))));
+            if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, rays[k].dir, normals_[k], l), 0, {});
             if (f.specular > 0)
-              c = povcolour::add(c, single(intensity * std::max(0.0, shading::specular(f, s.specularExponent,
-                                                                                      rays[k].dir, normals_[k], l))));
+              c = c + highlight(f, intensity,
+                                shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l), 0, {});
           }
         }
-        lit[i] = povcolour::add(lit[i], c);
+        lit[i] = lit[i] + c;
       }
     }
-    for (int i = 0; i < 4; ++i) out[k0 + i] = lit[i];
+    for (int i = 0; i < 4; ++i) out[k0 + i] = povcolour::toColor(lit[i]);
     return true;
   }
 
@@ -663,14 +662,15 @@ class Tracer {
   // A Phong or specular term h of one light: intensity x h, the light colour tinted first
   // where metallic (ComputeSpecularColour: only Metallic > 0), rounded as POV-Ray's float
   // colour is.
-  static Color highlight(const FinishDesc& f, const Color& light, double h, double nl, const Color& pigment) {
+  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, double h, double nl,
+                                         const Color& pigment) {
     if (!(h > 0)) return {};
-    Color hc = light * h;
-    if (f.metallic > 0) hc *= shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pigment);
-    return single(hc);
+    if (!(f.metallic > 0)) return povcolour::highlight(light, h);
+    const Color hc = light * h * shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pigment);
+    return {float(hc.r), float(hc.g), float(hc.b)};
   }
 
-  Color lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
+  povcolour::FloatColour lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
                           const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
                           const KnownLight* known) {
     const Vec3& p = sp.p;
@@ -708,17 +708,16 @@ class Tracer {
     }
     const FinishDesc& f = s.finish;
     // POV-Ray's float colour operations, term by term (render/pov_colour.h).
-    Color c;
+    povcolour::FloatColour c;
     if (f.diffuse > 0) {
       const double k = f.brilliance == 1 ? nl : std::pow(nl, f.brilliance);
       c = povcolour::diffuse(pig.rgb, k, f.diffuse, alpha, intensity);
     }
     if constexpr ((E & kHighlights) != 0) {
       if (s.highlights && !light.shadowless) {
-        if (f.phong > 0) c = povcolour::add(c, highlight(f, intensity, shading::phong(f, ray.dir, n, l), nl, pig.rgb));
+        if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
         if (f.specular > 0)
-          c = povcolour::add(
-              c, highlight(f, intensity, shading::specular(f, s.specularExponent, ray.dir, n, l), nl, pig.rgb));
+          c = c + highlight(f, intensity, shading::specular(f, s.specularExponent, ray.dir, n, l), nl, pig.rgb);
       }
     }
     return c;

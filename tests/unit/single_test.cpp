@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <random>
 
 #include "core/single.h"
 #include "render/light.h"
@@ -33,6 +34,21 @@ TEST(Single, RoundsEveryLaneOfAnArray) {
   double in[4] = {kIor, kFadeDistance, kFadePower, 0.1}, out[4];
   for (int i = 0; i < 4; ++i) out[i] = single(in[i]);
   for (int i = 0; i < 4; ++i) EXPECT_EQ(out[i], viaMemory(in[i])) << i;
+}
+
+// A colour's three channels rounded at once (the AVX path) give each channel's rounding.
+TEST(Single, ColourChannelsEachRounded) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> v(-2, 2);
+  for (int i = 0; i < 10000; ++i) {
+    const Color c{v(rng), v(rng) * 1e-20, v(rng) * 1e30};
+    const Color r = single(c);
+    ASSERT_EQ(r.r, viaMemory(c.r));
+    ASSERT_EQ(r.g, viaMemory(c.g));
+    ASSERT_EQ(r.b, viaMemory(c.b));
+  }
+  const Vec3 p = single(Vec3{0.1, 0.2, 0.3});
+  EXPECT_EQ(p.y, viaMemory(0.2));
 }
 
 TEST(Single, MaterialTableRoundsInteriorFinishAndPigment) {
