@@ -53,20 +53,6 @@ std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, dou
   return std::nullopt;
 }
 
-// ---------------------------------------------------------------- disc
-
-std::optional<ShapeHit> hitDisc(const DiscShape& d, const Ray& ray, double lo, double hi, double unit) {
-  const double nd = dot(d.normal, ray.dir);
-  const double len = length(ray.dir);
-  if (std::fabs(nd) < kPovEpsilon * len) return std::nullopt;
-  const double t = dot(d.normal, d.center - ray.origin) / nd;
-  if (t <= std::max(lo, kDepthTolerance * unit / len) || t >= hi) return std::nullopt;
-  const Vec3 off = ray.at(t) - d.center;
-  const double r2 = dot(off, off);
-  if (r2 < d.hole2 || r2 > d.radius2) return std::nullopt;
-  return ShapeHit{t};
-}
-
 // ---------------------------------------------------------------- triangles
 
 // Watertight ray-triangle test (Woop, Benthin and Wald 2013): a ray through a shared
@@ -106,7 +92,11 @@ struct Intersector {
   std::optional<ShapeHit> operator()(const SphereShape& s) const { return hitSphere(s, ray, lo, hi, unitDir, unit); }
   std::optional<ShapeHit> operator()(const PlaneShape& p) const { return detail::hitPlane(p, ray, lo, hi, unit); }
   std::optional<ShapeHit> operator()(const BoxShape& b) const { return hitBox(b, ray, lo, hi, unit); }
-  std::optional<ShapeHit> operator()(const DiscShape& d) const { return hitDisc(d, ray, lo, hi, unit); }
+  std::optional<ShapeHit> operator()(const PovDiscShape& d) const {
+    const auto t = hitPovDisc(d, ray, lo, hi, unit);
+    if (!t) return std::nullopt;
+    return ShapeHit{*t};
+  }
   std::optional<ShapeHit> operator()(const TriangleShape& t) const {
     if (t.normal == Vec3{}) return std::nullopt;
     return hitTriangle(t.p1, t.p2, t.p3, ray, lo, hi, unit);
@@ -149,7 +139,7 @@ struct Reproject {
     error[axis] = 0;
     return {q, error};
   }
-  SurfacePoint operator()(const DiscShape& d) const { return flatSurfacePoint(d.normal, d.center, p); }
+  SurfacePoint operator()(const PovDiscShape&) const { return povDiscSurfacePoint(p); }
   SurfacePoint operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   SurfacePoint operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   SurfacePoint operator()(const PovTriangleShape& t) const { return flatSurfacePoint(t.normal, t.p1, p); }
@@ -175,7 +165,7 @@ struct Normal {
     n[hit.part / 2] = hit.part % 2 ? 1.0 : -1.0;
     return n;
   }
-  Vec3 operator()(const DiscShape& d) const { return d.normal; }
+  Vec3 operator()(const PovDiscShape& d) const { return d.normal; }  // world space already (Primitive::normal)
   Vec3 operator()(const TriangleShape& t) const { return t.normal; }
   Vec3 operator()(const SmoothTriangleShape& t) const {
     const Vec3 n = t.n1 * (1 - hit.u - hit.v) + t.n2 * hit.u + t.n3 * hit.v;
@@ -187,23 +177,13 @@ struct Normal {
   Vec3 operator()(const PovConeShape& c) const { return povConeNormal(c, p, hit.part); }
 };
 
-// Bounds of a disc of radius r around centre c perpendicular to unit axis a.
-Bounds discBounds(const Vec3& c, const Vec3& a, double r) {
-  Bounds b;
-  Vec3 e;
-  for (int i = 0; i < 3; ++i) e[i] = r * std::sqrt(std::max(0.0, 1 - a[i] * a[i]));
-  b.extend(c - e);
-  b.extend(c + e);
-  return b;
-}
-
 struct LocalBounds {
   Bounds operator()(const SphereShape& s) const {
     return {s.center - Vec3(s.radius), s.center + Vec3(s.radius)};
   }
   Bounds operator()(const PlaneShape&) const { return {}; }
   Bounds operator()(const BoxShape& b) const { return {b.lo, b.hi}; }
-  Bounds operator()(const DiscShape& d) const { return discBounds(d.center, d.normal, std::sqrt(d.radius2)); }
+  Bounds operator()(const PovDiscShape& d) const { return povDiscBounds(d); }
   Bounds operator()(const TriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   Bounds operator()(const SmoothTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
   Bounds operator()(const PovTriangleShape& t) const { return tri(t.p1, t.p2, t.p3); }
@@ -228,7 +208,7 @@ struct Inside {
   bool operator()(const BoxShape& b) const {
     return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
   }
-  bool operator()(const DiscShape& d) const { return dot(d.normal, p - d.center) < 0; }
+  bool operator()(const PovDiscShape&) const { return povDiscInside(p); }
   bool operator()(const TriangleShape&) const { return false; }
   bool operator()(const SmoothTriangleShape&) const { return false; }
   bool operator()(const PovTriangleShape&) const { return false; }
@@ -270,6 +250,8 @@ Vec3 Primitive::normal(const Ray& ray, const ShapeHit& hit) const {
   const Vec3 world = ray.at(hit.t);
   // Every shape's normal is unit already (a sphere's (P-C)/r as POV-Ray leaves it).
   if (!transform) return std::visit(Normal{world, hit}, shape);
+  // POV-Ray keeps a disc's normal in world space, carried step by step (pov_disc.h).
+  if (const auto* disc = std::get_if<PovDiscShape>(&shape)) return disc->normal;
   const Vec3 local = transform->toObject.applyPoint(world);
   return transform->normalToWorld(std::visit(Normal{local, hit}, shape));
 }

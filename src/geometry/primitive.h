@@ -14,6 +14,7 @@
 #include "core/transform.h"
 #include "geometry/bounds.h"
 #include "geometry/pov_cone.h"
+#include "geometry/pov_disc.h"
 #include "geometry/pov_triangle.h"
 #include "geometry/robust.h"
 
@@ -37,15 +38,14 @@ inline constexpr double kPovSphereReach2 = 1e10;
 struct SphereShape { Vec3 center; double radius; };
 struct PlaneShape { Vec3 normal; double distance; };  // unit normal; n.X = d
 struct BoxShape { Vec3 lo, hi; };
-struct DiscShape { Vec3 center, normal; double radius2, hole2; };  // unit normal, squared radii
 // A mesh's triangles (watertight test); lone triangles are PovTriangleShape and
 // PovSmoothTriangleShape (geometry/pov_triangle.h).
 struct TriangleShape { Vec3 p1, p2, p3; Vec3 normal; };          // unit face normal
 struct SmoothTriangleShape { Vec3 p1, p2, p3; Vec3 n1, n2, n3; Vec3 normal; };
 
-// Cylinders and cones are PovConeShape (geometry/pov_cone.h): POV-Ray's canonical shape,
-// always with its transform.
-using Shape = std::variant<SphereShape, PlaneShape, BoxShape, PovConeShape, DiscShape, TriangleShape,
+// Cylinders, cones and discs are PovConeShape and PovDiscShape (geometry/pov_cone.h,
+// pov_disc.h): POV-Ray's canonical shapes, always with their transforms.
+using Shape = std::variant<SphereShape, PlaneShape, BoxShape, PovConeShape, PovDiscShape, TriangleShape,
                            SmoothTriangleShape, PovTriangleShape, PovSmoothTriangleShape>;
 
 // The nearest hit of one primitive: its distance along the world ray and whatever the

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/single.h"
 #include "geometry/primitive.h"
 
 namespace pvrt {
@@ -18,7 +19,7 @@ Light buildLight(const LightDesc& d) {
   Light l;
   l.location = d.location;
   // A light's colour is a float colour in POV-Ray (LightSource::colour), as pigments are.
-  l.color = {double(float(d.color.r)), double(float(d.color.g)), double(float(d.color.b))};
+  l.color = single(d.color);
   l.shadowless = d.shadowless;
   if (d.spot) {
     l.spot = true;

@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "core/interrupt.h"
+#include "core/single.h"
 #include "core/prefault.h"
 #include "geometry/primitive.h"
 #include "parallel/parallel_for.h"
@@ -24,12 +25,9 @@ size_t hashOf(const Surface& s) {
 
 // POV-Ray 3.7 stores pigments, finishes and interiors in single precision (SNGL fields
 // and float colours, frame.h): every value it reads passes through a float, and so does
-// each here, so that the arithmetic starts from the same numbers (an ior of 1.33 refracts
-// as 1.3300000429153442). docs/fidelity.md lists the fields.
-double single(double v) { return double(float(v)); }
-Color single(const Color& c) { return {single(c.r), single(c.g), single(c.b)}; }
-FilterColor single(const FilterColor& c) { return {single(c.rgb), single(c.filter), single(c.transmit)}; }
-
+// each here (core/single.h), so that the arithmetic starts from the same numbers (an ior
+// of 1.33 refracts as 1.3300000429153442). docs/fidelity.md lists the fields.
+using pvrt::single;
 FinishDesc single(FinishDesc f) {
   f.ambient = single(f.ambient);
   f.emission = single(f.emission);

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/prefault.h"
+#include "core/single.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
@@ -62,7 +63,7 @@ bool isDiagonal(const Affine& a) {
 }
 
 // POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
-Vec3 toFloat(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
+Vec3 toFloat(const Vec3& v) { return single(v); }
 
 // Where PrimitiveBuilder puts an object's primitives: at the end of `grow`; without it, it
 // only counts them.
@@ -106,9 +107,11 @@ class PrimitiveBuilder {
   // parser composes it: their caps then tie with a plane as POV-Ray's do.
   void operator()(const CylinderDesc& c) { povCone(placeCylinder(c.base, c.cap, c.radius, c.open)); }
   void operator()(const ConeDesc& c) { povCone(placeCone(c.base, c.baseRadius, c.cap, c.capRadius, c.open)); }
+  // Discs too: one lying on a plane ties with it as POV-Ray's does.
   void operator()(const DiscDesc& d) {
-    add(DiscShape{d.center, unitDirection(d.normal), d.radius * d.radius, d.holeRadius * d.holeRadius},
-        !identity_);
+    PovDiscPlacement placed = placeDisc(d.center, d.normal, d.radius, d.holeRadius);
+    for (const TransformStep& step : steps_.steps) placed.then(povStep(step));
+    if (add(placed.shape, false)) primitive().transform = share(placed.transform.toTransform());
   }
   void operator()(const TriangleDesc& t) {
     PovTriangleBuilder b(t.p1, t.p2, t.p3);

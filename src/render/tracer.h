@@ -14,6 +14,7 @@
 #include "core/square_bound.h"
 #include "render/effects.h"
 #include "render/scene.h"
+#include "render/pov_colour.h"
 #include "render/shading.h"
 #include "render/spawn.h"
 #include "render/stats.h"
@@ -193,8 +194,7 @@ class Tracer {
     if constexpr ((E & kTextures) != 0) pig = scene_.materials.pigmentAt(m, p);
     const double alpha = 1.0 - pig.filter - pig.transmit;
 
-    Color result = pig.rgb * f.ambient * scene_.globals.ambientLight * alpha +
-                   pig.rgb * f.emission * alpha;
+    povcolour::FloatColour lit = povcolour::ambient(pig.rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha);
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
     // The cells found for the prefetch above answer the shadow segments from p, with no
@@ -203,8 +203,9 @@ class Tracer {
     pointShadowOrigin_.reset();
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
-      result += lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
+      lit = lit + lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
     }
+    Color result = povcolour::toColor(lit);
     pointCells_ = false;
 
     const double cosI = -dot(ray.dir, n);
@@ -387,7 +388,8 @@ class Tracer {
     // Initialised from the materials at once: default-constructed, these arrays were zeroed
     // first (a rep stos that took 8% of this function).
     FilterColor pig[4] = {m[0]->color, m[1]->color, m[2]->color, m[3]->color};
-    double alpha[4], ambientR[4], ambientG[4], ambientB[4];
+    double alpha[4];
+    povcolour::FloatColour lit[4];  // each lane's colour: its ambient, then each light's term added
     unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
     const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
@@ -402,18 +404,9 @@ class Tracer {
         if (!m[i]->opaque && (pig[i].filter != 0 || pig[i].transmit != 0)) return false;
       }
       alpha[i] = 1.0 - pig[i].filter - pig[i].transmit;
-      const Color ambient =
-          pig[i].rgb * f.ambient * scene_.globals.ambientLight * alpha[i] + pig[i].rgb * f.emission * alpha[i];
-      ambientR[i] = ambient.r, ambientG[i] = ambient.g, ambientB[i] = ambient.b;
+      lit[i] = povcolour::ambient(pig[i].rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha[i]);
     }
     stats_.shadingOps += 4;
-    const Double4 pigR = set(pig[0].rgb.r, pig[1].rgb.r, pig[2].rgb.r, pig[3].rgb.r);
-    const Double4 pigG = set(pig[0].rgb.g, pig[1].rgb.g, pig[2].rgb.g, pig[3].rgb.g);
-    const Double4 pigB = set(pig[0].rgb.b, pig[1].rgb.b, pig[2].rgb.b, pig[3].rgb.b);
-    const Double4 alphaV = set(alpha[0], alpha[1], alpha[2], alpha[3]);
-    Double4 r = load(ambientR), g = load(ambientG), b = load(ambientB);
-    const Double4 nx = load(nx_ + k0), ny = load(ny_ + k0), nz = load(nz_ + k0);
-    const Double4 zero = splat(0.0);
     for (size_t j = 0; j < lights; ++j) {
       const Light& light = scene_.lights[j];
       const PacketLight& pl = known_[j];
@@ -431,42 +424,28 @@ class Tracer {
             gives = 0;
         }
       }
-      Double4 cr = zero, cg = zero, cb = zero;
-      if (gives != 0) {
-        const Double4 dx = load(pl.dirX + k0), dy = load(pl.dirY + k0), dz = load(pl.dirZ + k0);
+      // POV-Ray's float colour operations, lane by lane as lightContribution does them.
+      for (int i = 0; i < 4; ++i) {
+        if (!(gives >> i & 1u)) continue;
+        const int k = k0 + i;
+        const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
+        povcolour::FloatColour c;
         if (f.diffuse > 0) {
-          const Double4 nl = nx * dx + ny * dy + nz * dz;
-          const Double4 k = splat(f.diffuse) * nl * alphaV;
-          cr = pigR * splat(intensity.r) * k;
-          cg = pigG * splat(intensity.g) * k;
-          cb = pigB * splat(intensity.b) * k;
+          const double nl = nx_[k] * l.x + ny_[k] * l.y + nz_[k] * l.z;
+          c = povcolour::diffuse(pig[i].rgb, nl, f.diffuse, alpha[i], intensity);
         }
         if constexpr ((E & kHighlights) != 0) {
           if (s.highlights && !light.shadowless) {
-            double h[4] = {0, 0, 0, 0};
-            for (int i = 0; i < 4; ++i) {
-              if (!(gives >> i & 1u)) continue;
-              const int k = k0 + i;
-              const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
-              if (f.phong > 0) h[i] += shading::phong(f, rays[k].dir, normals_[k], l);
-              if (f.specular > 0) h[i] += shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l);
-            }
-            const Double4 hv = load(h);
-            const unsigned lit = less(zero, hv);  // h > 0
-            cr = select(lit, cr + splat(intensity.r) * hv, cr);
-            cg = select(lit, cg + splat(intensity.g) * hv, cg);
-            cb = select(lit, cb + splat(intensity.b) * hv, cb);
+            if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, rays[k].dir, normals_[k], l), 0, {});
+            if (f.specular > 0)
+              c = c + highlight(f, intensity,
+                                shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l), 0, {});
           }
         }
-        cr = select(gives, cr, zero);
-        cg = select(gives, cg, zero);
-        cb = select(gives, cb, zero);
+        lit[i] = lit[i] + c;
       }
-      r = r + cr, g = g + cg, b = b + cb;
     }
-    double rs[4], gs[4], bs[4];
-    store(rs, r), store(gs, g), store(bs, b);
-    for (int i = 0; i < 4; ++i) out[k0 + i] = {rs[i], gs[i], bs[i]};
+    for (int i = 0; i < 4; ++i) out[k0 + i] = povcolour::toColor(lit[i]);
     return true;
   }
 
@@ -689,7 +668,18 @@ class Tracer {
     }
   }
 
-  Color lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
+  // A Phong or specular term h of one light: intensity x h, the light colour tinted first
+  // where metallic (ComputeSpecularColour: only Metallic > 0), rounded as POV-Ray's float
+  // colour is.
+  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, double h, double nl,
+                                         const Color& pigment) {
+    if (!(h > 0)) return {};
+    if (!(f.metallic > 0)) return povcolour::highlight(light, h);
+    const Color hc = light * h * shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pigment);
+    return {float(hc.r), float(hc.g), float(hc.b)};
+  }
+
+  povcolour::FloatColour lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
                           const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
                           const KnownLight* known) {
     const Vec3& p = sp.p;
@@ -726,22 +716,17 @@ class Tracer {
       }
     }
     const FinishDesc& f = s.finish;
-    Color c;
+    // POV-Ray's float colour operations, term by term (render/pov_colour.h).
+    povcolour::FloatColour c;
     if (f.diffuse > 0) {
       const double k = f.brilliance == 1 ? nl : std::pow(nl, f.brilliance);
-      c = pig.rgb * intensity * (f.diffuse * k * alpha);
+      c = povcolour::diffuse(pig.rgb, k, f.diffuse, alpha, intensity);
     }
     if constexpr ((E & kHighlights) != 0) {
       if (s.highlights && !light.shadowless) {
-        double h = 0;
-        if (f.phong > 0) h += shading::phong(f, ray.dir, n, l);
-        if (f.specular > 0) h += shading::specular(f, s.specularExponent, ray.dir, n, l);
-        if (h > 0) {
-          Color hc = intensity * h;
-          // Only a positive metallic tints (ComputeSpecularColour: Metallic > 0).
-          if (f.metallic > 0) hc *= shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pig.rgb);
-          c += hc;
-        }
+        if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
+        if (f.specular > 0)
+          c = c + highlight(f, intensity, shading::specular(f, s.specularExponent, ray.dir, n, l), nl, pig.rgb);
       }
     }
     return c;

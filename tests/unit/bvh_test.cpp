@@ -44,20 +44,23 @@ class SceneMaker : public test::RandomGeometry {
       const Vec3 c = point(10);
       const double r = uniform(0.1, 0.8);
       Shape s;
-      std::optional<PovConePlacement> placed;  // cylinders and cones carry POV-Ray's transform
+      std::optional<PovConePlacement> placed;  // cylinders, cones and discs carry POV-Ray's transform
+      std::optional<PovDiscPlacement> disc;
       switch (i % 7) {
         case 0: s = SphereShape{c, r}; break;
         case 1: s = BoxShape{c - Vec3(r), c + Vec3{r, 2 * r, r}}; break;
         case 2: placed = placeCylinder(c, c + direction() * (2 * r), r / 2, i % 2 == 0); break;
         case 3: placed = placeCone(c, r, c + direction() * (2 * r), r / 3, false); break;
-        case 4: s = DiscShape{c, direction(), r * r, r * r / 4}; break;
+        case 4: disc = placeDisc(c, direction(), r, r / 2); break;
         case 5: s = makeTriangle(c, c + direction() * r, c + direction() * r); break;
         default:
           s = makeSmoothTriangle(c, direction(), c + direction() * r, direction(), c + direction() * r, direction());
       }
       if (placed) s = placed->shape;
+      if (disc) s = disc->shape;
       Primitive p = make(s, i);
       if (placed) p.transform = share(placed->transform.toTransform());
+      if (disc) p.transform = share(disc->transform.toTransform());
       p.material = n - i;
       if (i % 5 == 0) {  // a sphere at the origin, scaled, rotated and moved to c
         p.shape = SphereShape{{0, 0, 0}, r};

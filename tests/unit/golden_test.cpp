@@ -90,13 +90,14 @@ TEST(GoldenManifest, MalformedLinesNameFileAndLine) {
 
 TEST(GoldenTolerances, RepositoryFileAndTheDefault) {
   const Tolerances t = readTolerances(PVRT_SOURCE_DIR "/reference/tolerances.tsv");
-  EXPECT_EQ(t.of("fidelity_ior").limits.maxLevels, 20);
-  EXPECT_FALSE(t.of("fidelity_ior").reason.empty());
-  EXPECT_EQ(t.of("fidelity_ior").limits.maxOffBy1, 17);
-  // A SCENE.VARIANT line holds for that variant alone.
-  EXPECT_EQ(t.of("lights", "am2").limits.maxOffBy1, 1);
-  EXPECT_EQ(t.of("lights", "aa").limits.maxOffBy1, 0);
-  EXPECT_EQ(t.of("lights").limits.maxOffBy1, 0);
+  EXPECT_EQ(t.of("fidelity_crease").limits.maxLevels, 45);
+  EXPECT_FALSE(t.of("fidelity_crease").reason.empty());
+  EXPECT_EQ(t.of("light_area_circular").limits.maxOffBy1, 1);
+  // Scenes without a line of their own (fidelity_ior has matched since its ior became a
+  // float, lights.am2 since the colours round as POV-Ray's do).
+  EXPECT_EQ(t.of("fidelity_ior").limits.maxLevels, 1);
+  EXPECT_EQ(t.of("fidelity_ior").limits.maxOffBy1, 0);
+  EXPECT_EQ(t.of("lights", "am2").limits.maxOffBy1, 0);
   // The corpus's own default tier (its `*` line): nothing over 1 level, nothing off by 1.
   EXPECT_EQ(t.of("paper1").limits.maxLevels, 1);
   EXPECT_EQ(t.of("paper1").limits.maxFractionOver1, 0.0);
@@ -108,6 +109,15 @@ TEST(GoldenTolerances, RepositoryFileAndTheDefault) {
   EXPECT_EQ(none.of("paper1").limits.maxFractionOver1, 0.0);
   EXPECT_EQ(none.of("paper1").limits.maxOffBy1, -1);
   EXPECT_TRUE(none.of("paper1").reason.empty());
+}
+
+// A SCENE.VARIANT line holds for that variant alone.
+TEST(GoldenTolerances, VariantLine) {
+  const std::string five = "scene\tmax_levels\tmax_fraction_over_1\tmax_off_by_1\treason\n";
+  const Tolerances t = readTolerances(writeTemp("t5.tsv", five + "*\t1\t0\t0\tdefault\nlights.am2\t1\t0\t1\tone channel\n"));
+  EXPECT_EQ(t.of("lights", "am2").limits.maxOffBy1, 1);
+  EXPECT_EQ(t.of("lights", "aa").limits.maxOffBy1, 0);
+  EXPECT_EQ(t.of("lights").limits.maxOffBy1, 0);
 }
 
 TEST(GoldenTolerances, SuiteDefaultAndMissingReason) {

@@ -443,11 +443,21 @@ TEST(Shapes, PointedConeAndMisses) {
 
 // ---------------------------------------------------------------- disc
 
-// A disc in y=0 of radius 2 with a hole of radius 1 (radii are stored squared).
-const DiscShape kRing{{0, 0, 0}, kY, 4, 1};
+// A disc as the scene builds one: POV-Ray's canonical disc through its transform, with
+// more transforms after it.
+Primitive disc(const Vec3& center, const Vec3& normal, double radius, double hole,
+               const std::optional<PovTransform>& then = std::nullopt) {
+  PovDiscPlacement placed = placeDisc(center, normal, radius, hole);
+  if (then) placed.then(*then);
+  Primitive p = prim(placed.shape);
+  p.transform = share(placed.transform.toTransform());
+  return p;
+}
+// A disc in y=0 of radius 2 with a hole of radius 1.
+Primitive ring() { return disc({0, 0, 0}, kY, 2, 1); }
 
 TEST(Shapes, DiscWithHoleHitsTheRingOnly) {
-  const Primitive d = prim(kRing);
+  const Primitive d = ring();
   const Ray ring{{1.5, 5, 0}, -kY};
   const auto h = hit(d, ring);
   ASSERT_TRUE(h);
@@ -466,7 +476,7 @@ TEST(Shapes, DiscWithHoleHitsTheRingOnly) {
 // Tilted disc: centre (0,0,5), normal (0,0,-1), radius 1. From the origin along
 // (0.6,0,0.8) the plane z=5 is reached at t = 5/0.8 = 6.25, at x = 3.75: outside.
 TEST(Shapes, DiscFacingTheRayAndOffsetMiss) {
-  const Primitive d = prim(DiscShape{{0, 0, 5}, -kZ, 1, 0});
+  const Primitive d = disc({0, 0, 5}, -kZ, 1, 0);
   const auto h = hit(d, {{0.5, 0.5, 0}, kZ});
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 5.0, kTol);
@@ -475,7 +485,7 @@ TEST(Shapes, DiscFacingTheRayAndOffsetMiss) {
 
 // Bounds of a radius-2 disc in y=0: x and z within +-2, y flat. Inside: below the normal.
 TEST(Shapes, DiscBoundsAndInside) {
-  const Primitive d = prim(kRing);
+  const Primitive d = ring();
   expectVecNear(d.bounds().lo, {-2, 0, -2});
   expectVecNear(d.bounds().hi, {2, 0, 2});
   EXPECT_TRUE(d.inside({0, -1, 0}));
@@ -672,7 +682,7 @@ TEST(Shapes, RotatedBoxHitAndNormal) {
 // A transformed (non-unit-direction in object space) disc keeps world distances: disc of
 // radius 1 in y=0 scaled by 3 is radius 3; from y=10 at x=2.5 it is hit at t=10.
 TEST(Shapes, ScaledDiscKeepsWorldDistance) {
-  const Primitive d = prim(DiscShape{{0, 0, 0}, kY, 1, 0}, Affine::scale(Vec3{3}));
+  const Primitive d = disc({0, 0, 0}, kY, 1, 0, PovTransform::scaling(Vec3{3}));
   const auto h = hit(d, {{2.5, 10, 0}, -kY});
   ASSERT_TRUE(h);
   EXPECT_NEAR(h->t, 10.0, 1e-12);
