@@ -517,12 +517,16 @@ void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const doubl
   // From here on `live` holds the segments not yet blocked.
   std::fill(out, out + lanes.count, Occlusion::Clear);
   if (live == 0) return;
-  LazySlabs slabs(lanes);
   // The cone runs from the light back to each segment's start: s in [0, 1].
   Vec3 lo, hi;
   lanes.originRange(apex, lo, hi);
-  const PacketCone cone(apex, lo, hi, 0.0);
-  const double sHi = 1.0;
+  occludeLiveInTree(PacketCone(apex, lo, hi, 0.0), 1.0, lanes, tMax, tMin, live, out, blocker, tests);
+  occludeLiveByUnbounded(apex, lanes, tMax, tMin, live, out, blocker, tests);
+}
+
+void Bvh::occludeLiveInTree(const PacketCone& cone, double sHi, const PacketRays& lanes, const double* tMax,
+                            double tMin, uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+  LazySlabs slabs(lanes);
   double unused[kBvhWidth];
   auto enters = [&](const BvhNode& node, unsigned candidates) {
     unsigned found = 0;
@@ -539,7 +543,6 @@ void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const doubl
       occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
     return live == 0;
   });
-  occludeLiveByUnbounded(apex, lanes, tMax, tMin, live, out, blocker, tests);
 }
 
 void Bvh::occlusionPacketFromPoint(const PacketRays& lanes, const double* tMax, double tMin, uint64_t live,
@@ -558,20 +561,7 @@ void Bvh::occlusionPacketFromPoint(const PacketRays& lanes, const double* tMax, 
   const PacketCone cone({lanes.ox[first], lanes.oy[first], lanes.oz[first]}, lo, hi, tMin);
   double sHi = -INFINITY;
   for (uint64_t m = live; m != 0; m &= m - 1) sHi = std::max(sHi, tMax[__builtin_ctzll(m)]);
-  LazySlabs slabs(lanes);
-  double unused[kBvhWidth];
-  auto enters = [&](const BvhNode& node, unsigned candidates) {
-    unsigned found = 0;
-    for (uint64_t m = live; m != 0 && found != candidates; m &= m - 1) {
-      const int k = __builtin_ctzll(m);
-      found |= hitsChildren(node, slabs[k], tMin, tMax[k], unused) & candidates;
-    }
-    return found;
-  };
-  traversePacket(cone, sHi, enters, [&](uint32_t at, uint32_t n, const BvhNode&, int) {
-    for (uint32_t i = at; i < at + n && live != 0; ++i) occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
-    return live == 0;
-  });
+  occludeLiveInTree(cone, sHi, lanes, tMax, tMin, live, out, blocker, tests);
 }
 
 void Bvh::occlusionPacketInCell(const LightBuffer& buffer, int cell, double reach, const PacketRays& lanes,

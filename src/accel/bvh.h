@@ -217,6 +217,11 @@ class Bvh {
   // Blocked by it, and leaves `live`, when i is opaque, else Transparent.
   void occludeLive(uint32_t i, const PacketRays& segments, const double* tMax, double tMin, uint64_t& live,
                    Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+  // The bounded primitives' part of the packet shadow queries: the walk of the tree within
+  // `cone` (up to its parameter sHi), each node entered where a live segment's box test
+  // enters it, each leaf's primitives tested against every live segment.
+  void occludeLiveInTree(const PacketCone& cone, double sHi, const PacketRays& segments, const double* tMax,
+                         double tMin, uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
   // The unbounded primitives' part of the packet shadow queries.
   void occludeLiveByUnbounded(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
                               uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
