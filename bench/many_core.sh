@@ -3,20 +3,23 @@
 # is installed: pvrt, mpirun and their libraries travel as a bundle
 # (../shared/tools/bundle.sh BUILD BUNDLE, or any folder with pvrt.sh and mpirun.sh that
 # start them), python3 is the only other need (matplotlib for the plot, if there).
-#   bench/many_core.sh BUNDLE OUT [--quick|--full] [PARTS]   (PARTS: scaling,mpibench,big; default all)
+#   bench/many_core.sh BUNDLE OUT [--quick|--full] [PARTS]
+# PARTS, run in the order given: big, mpibench, ceilingcurve, scaling (default scaling,mpibench,big,ceilingcurve).
+# DEADLINE=S stops the scaling part S seconds after the start, keeping the rounds it finished (the runs' CSV is
+# rewritten after every run), so a borrowed machine's time limit loses no finished measurement.
 # SCALING_ARGS replaces the arguments given to bench/speedup.py (e.g. a --select of a few
 # configurations); MPIBENCH_RANKS lists the rank counts of mpi-bench (default 2 4 8 .. N).
-# Writes to OUT (8 files): machine.txt (CPUs, topology), scaling.md / scaling_runs.csv /
-# scaling_summary.csv / scaling.png (bench/speedup.py: OpenMP schedules, MPI strategies and
+# Writes to OUT (8 files, as many as a borrowed machine's return may hold): machine.txt (CPUs, topology),
+# scaling.md / scaling_runs.csv / scaling_summary.csv (bench/speedup.py: OpenMP schedules, MPI strategies and
 # gathers, hybrid splits, the machine's ceiling, the c=256 setting), mpibench.csv (pvrt
 # mpi-bench at 2..N ranks), big.csv (the 10^6-sphere scene's stages and peak memory on 1 and
-# N threads) and logs.tgz (every run's output).
+# N threads), ceilingcurve.csv (1, 2, 4, .. N independent single-thread renders at once: where the machine's own
+# slow-down sets in) and logs.tgz (every run's output).
 set -uo pipefail
 bundle=$(cd "${1:?BUNDLE}" && pwd)
 out=${2:?OUT}
 quick=${3:-}
-parts=${4:-scaling,mpibench,big}
-has() { [[ ",$parts," == *",$1,"* ]]; }
+parts=${4:-scaling,mpibench,big,ceilingcurve}
 root=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -50,15 +53,19 @@ else
 fi
 [ -n "${SCALING_ARGS:-}" ] && eval "scaling=($SCALING_ARGS)"
 mkdir -p "$work/scaling"
-if has scaling; then
+part_scaling() {
   say "scaling (bench/speedup.py ${scaling[*]})"
-  python3 "$root/bench/speedup.py" --pvrt "$pvrt" --mpirun "$mpirun" --out "$work/scaling" "${scaling[@]}" |
-    grep -vE '^  (openmp|mpi|hybrid|alone|fig1)' || true
-  cp "$work/scaling/"scaling.md "$work/scaling/"scaling_runs.csv "$work/scaling/"scaling_summary.csv "$out/"
-  cp "$work/scaling/scaling.png" "$out/" 2>/dev/null
-fi
+  local limit=()
+  [ -n "${DEADLINE:-}" ] && limit=(timeout --signal=INT "$((DEADLINE - ($(date +%s) - started)))")
+  "${limit[@]}" python3 "$root/bench/speedup.py" --pvrt "$pvrt" --mpirun "$mpirun" --out "$work/scaling" \
+    "${scaling[@]}" | { grep -vE '^  (openmp|mpi|hybrid|alone|fig1)' || true; }
+  [ "${PIPESTATUS[0]}" = 0 ] || say "scaling stopped early or failed: the runs' CSV holds what finished"
+  for f in scaling.md scaling_runs.csv scaling_summary.csv; do  # scaling.png travels in logs.tgz
+    cp "$work/scaling/$f" "$out/" 2>/dev/null
+  done
+}
 
-if has mpibench; then
+part_mpibench() {
   say "mpi-bench at 2..$n ranks"
   ranks=${MPIBENCH_RANKS:-}
   if [ -z "$ranks" ]; then
@@ -72,9 +79,33 @@ if has mpibench; then
   for f in "$work"/mpibench-*.csv; do
     if [ "$first" = 1 ]; then cat "$f" >"$out/mpibench.csv"; first=0; else tail -n +2 "$f" >>"$out/mpibench.csv"; fi
   done
-fi
+}
 
-has big || { tar czf "$out/logs.tgz" -C "$work" . 2>/dev/null; say "done"; exit 0; }
+# k independent single-thread renders at once for k = 1, 2, 4 .. N, `reps` rounds: each one's render stage. If the
+# slow-down appears only past N/2, busy CPUs share physical cores; if it grows steadily, clock or memory.
+part_ceilingcurve() {
+  say "ceiling curve: 1..$n independent single-thread renders at once"
+  local ks="" k r j
+  for ((k = 1; k < n; k *= 2)); do ks="$ks $k"; done
+  ks="$ks $n"
+  echo "round,together,index,render_s" >"$out/ceilingcurve.csv"
+  for ((r = 0; r < 3; r++)); do
+    for k in $ks; do
+      for ((j = 0; j < k; j++)); do
+        "$pvrt" render "$root/scenes/paper1.xml" -o "$work/cc-$j.png" -W 640 -H 400 --sampler pov --spp 16 \
+          --threads 1 --stats --quiet >"$work/cc-$r-$k-$j.log" 2>&1 &
+      done
+      wait
+      for ((j = 0; j < k; j++)); do
+        t=$(sed -nE 's/.*render ([0-9.]+) s.*/\1/p' "$work/cc-$r-$k-$j.log" | head -1)
+        echo "$r,$k,$j,$t" >>"$out/ceilingcurve.csv"
+      done
+    done
+  done
+  rm -f "$work"/cc-*.png
+}
+
+part_big() {
 say "$spheres spheres: load, build, render, write, peak memory on 1 and $n threads"
 "$pvrt" generate --spheres "$spheres" --lights 5 --seed 3 -o "$work/big.xml" >/dev/null
 python3 - "$pvrt" "$work" "$n" "$out/big.csv" <<'PY'
@@ -104,5 +135,14 @@ with open(csv, "w") as f:
         f.write(",".join(str(v) for v in r.values()) + "\n")
 PY
 rm -f "$work/big.xml"
+}
+
+for part in ${parts//,/ }; do
+  case $part in
+    scaling | mpibench | big | ceilingcurve) "part_$part" ;;
+    *) echo "many_core.sh: unknown part '$part' (scaling, mpibench, big, ceilingcurve)" >&2; exit 2 ;;
+  esac
+done
+rm -f "$work/scaling/speedup-image.png"
 tar czf "$out/logs.tgz" -C "$work" . 2>/dev/null
 say "done"

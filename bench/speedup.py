@@ -51,6 +51,9 @@ def parse_args(argv):
     ap.add_argument("--fig1-base-runs", type=int, help="rounds of fig1's one-thread run (default: --fig1-runs)")
     ap.add_argument("--select", help="only the configurations whose name matches this regular expression")
     ap.add_argument("--quick", action="store_true", help="tiny sizes and one round (a smoke test)")
+    ap.add_argument("--summarise", action="store_true",
+                    help="run nothing: write the tables again from OUT/scaling_runs.csv (a run cut short, or one "
+                         "brought back from another machine; give the --max-p it ran with)")
     a = ap.parse_args(argv)
     a.runs = a.runs or (1 if a.quick else 5)
     a.width = a.width or (160 if a.quick else 1280)
@@ -155,49 +158,54 @@ class Runner:
                    peak_rss_kib=rss)
         row.update(parse_stats(log + ".json"))
         self.rows.append(row)
+        # Kept current after every run, so a measurement cut short (a borrowed machine's time limit) keeps its rows.
+        write_csv(os.path.join(self.a.out, "scaling_runs.csv"), self.rows, FIELDS)
         print("  %-40s c=%-3d run %-3s wall %7.3f s  render %s  %s" % (
             config, spp, rnd, wall, "%7.4f s" % row["render_s"] if "render_s" in row else "    n/a", row["status"]),
             flush=True)
         return row
 
-    def ceiling(self, rounds):
-        """One single-thread render alone, then N at once (independent processes), `rounds` times."""
+    def together(self, rnd):
+        """N single-thread renders at once (independent processes): the machine's own slow-down with N busy CPUs."""
         n = self.a.max_p
-        for rnd in range(rounds):
-            self.measure(("ceiling", "alone", "openmp", "tiles", "", 1, 1), rnd, self.a.spp)
-            procs = []
-            start = time.perf_counter()
-            for k in range(n):
-                log = os.path.join(self.logs, "ceiling.together.r%d.%d" % (rnd, k))
-                out = open(log + ".out", "w")
-                cmd = self.render_cmd(self.a.spp, 1, "tiles") + ["--stats-json", log + ".json"]
-                cmd[cmd.index("-o") + 1] = os.path.join(self.a.out, "ceiling-%d.png" % k)
-                procs.append((subprocess.Popen(cmd, stdout=out, stderr=subprocess.DEVNULL), out, log))
-            for p, out, log in procs:
-                rc = p.wait()
-                out.close()
-                stats = parse_stats(log + ".json")
-                self.rows.append(dict(group="ceiling", config="together x%d" % n, kind="openmp", schedule="tiles",
-                                      ranks=1, threads=1, p=1, run=rnd, spp=self.a.spp, width=self.a.width,
-                                      height=self.a.height, status="ok" if rc == 0 else "failed (exit %d)" % rc,
-                                      wall_s=time.perf_counter() - start, **stats))
-            for k in range(n):
-                try:
-                    os.remove(os.path.join(self.a.out, "ceiling-%d.png" % k))
-                except OSError:
-                    pass
-            together = [r["render_s"] for r in self.rows if r["config"].startswith("together") and r["run"] == rnd
-                        and "render_s" in r]
-            if together:
-                print("  %-40s c=%-3d run %-3s render median %.4f s, max %.4f s" % (
-                    "together x%d" % n, self.a.spp, rnd, statistics.median(together), max(together)), flush=True)
+        procs = []
+        start = time.perf_counter()
+        for k in range(n):
+            log = os.path.join(self.logs, "ceiling.together.r%d.%d" % (rnd, k))
+            out = open(log + ".out", "w")
+            cmd = self.render_cmd(self.a.spp, 1, "tiles") + ["--stats-json", log + ".json"]
+            cmd[cmd.index("-o") + 1] = os.path.join(self.a.out, "ceiling-%d.png" % k)
+            procs.append((subprocess.Popen(cmd, stdout=out, stderr=subprocess.DEVNULL), out, log))
+        for p, out, log in procs:
+            rc = p.wait()
+            out.close()
+            stats = parse_stats(log + ".json")
+            self.rows.append(dict(group="ceiling", config="together x%d" % n, kind="openmp", schedule="tiles",
+                                  ranks=1, threads=1, p=1, run=rnd, spp=self.a.spp, width=self.a.width,
+                                  height=self.a.height, status="ok" if rc == 0 else "failed (exit %d)" % rc,
+                                  wall_s=time.perf_counter() - start, **stats))
+        for k in range(n):
+            try:
+                os.remove(os.path.join(self.a.out, "ceiling-%d.png" % k))
+            except OSError:
+                pass
+        write_csv(os.path.join(self.a.out, "scaling_runs.csv"), self.rows, FIELDS)
+        together = [r["render_s"] for r in self.rows if r["config"].startswith("together") and r["run"] == rnd
+                    and "render_s" in r]
+        if together:
+            print("  %-40s c=%-3d run %-3s render median %.4f s, max %.4f s" % (
+                "together x%d" % n, self.a.spp, rnd, statistics.median(together), max(together)), flush=True)
 
     def rounds(self, confs, rounds, spp, only_first=None):
         """Every configuration once a round, forward then backward; `only_first` maps a configuration's
         name to the number of rounds it takes part in (from the first)."""
         for rnd in range(rounds):
             for conf in (confs if rnd % 2 == 0 else confs[::-1]):
-                if rnd < (only_first or {}).get(conf[1], rounds):
+                if rnd >= (only_first or {}).get(conf[1], rounds):
+                    continue
+                if conf[2] == "together":
+                    self.together(rnd)
+                else:
                     self.measure(conf, rnd, spp)
 
 
@@ -215,7 +223,12 @@ def summarise(rows, max_p):
             keys.append((r["config"], r["spp"]))
     alone = median([r for r in rows if r["config"] == "alone"], "render_s")
     together = median([r for r in rows if r["config"].startswith("together")], "render_s")
-    slowdown = together[0] / alone[0] if alone and together else None
+    # The slow-down is the machine's throughput with N busy CPUs against one alone: N renders that each take t_i
+    # do N / sum(alone / t_i) renders' worth of time apiece, which is what an on-demand schedule can reach (a
+    # median ratio would hide that some CPUs run at 60% of the others while the rest run at full speed).
+    together_times = [r["render_s"] for r in rows if r["config"].startswith("together") and r.get("status") == "ok"
+                      and r.get("render_s")]
+    slowdown = (1 / statistics.mean(alone[0] / t for t in together_times)) if alone and together_times else None
     for config, spp in keys:
         group = [r for r in rows if r["config"] == config and r["spp"] == spp]
         s = {k: group[0].get(k) for k in ("group", "config", "kind", "schedule", "gather", "ranks", "threads", "p",
@@ -262,8 +275,10 @@ def markdown(a, summary, slowdown, alone, together, meta):
           "(`mpirun` included) against one single-thread process's." % a.runs, ""]
     if alone and together:
         L += ["**Ceiling**: one single-thread render alone %.4f s [%.4f–%.4f]; %d at once %.4f s median, %.4f s "
-              "worst: **%.3fx** slower (worst %.3fx)." % (alone[0], alone[1], alone[2], a.max_p, together[0],
-                                                          together[2], slowdown, together[2] / alone[0]), ""]
+              "worst: their throughput is **1/%.3f** of %d renders alone (worst render %.3fx slower). Measured in "
+              "the same rounds as the configurations." % (alone[0], alone[1], alone[2], a.max_p, together[0],
+                                                          together[2], slowdown, a.max_p, together[2] / alone[0]),
+              ""]
     for group, title in (("openmp", "OpenMP threads"), ("mpi", "MPI ranks (1 thread each)"),
                          ("hybrid", "Hybrid MPI x OpenMP"), ("fig1", "Fig. 1 setting")):
         rows = [s for s in summary if s["group"] == group]
@@ -320,16 +335,51 @@ def plot(a, summary):
     return ["scaling.png"]
 
 
+def read_runs(path):
+    """The rows of a scaling_runs.csv, numbers as numbers, empty fields left out."""
+    rows = []
+    with open(path, newline="") as f:
+        for raw in csv.DictReader(f):
+            row = {}
+            for k, v in raw.items():
+                if v in ("", None):
+                    continue
+                try:
+                    row[k] = int(v)
+                except ValueError:
+                    try:
+                        row[k] = float(v)
+                    except ValueError:
+                        row[k] = v
+            rows.append(row)
+    return rows
+
+
 def main(argv, meta=None):
     a = parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
     r = Runner(a)
     started = time.perf_counter()
-    if "ceiling" in a.only and a.max_p > 1:
-        r.ceiling(a.runs)
+    if a.summarise:
+        r.rows = read_runs(os.path.join(a.out, "scaling_runs.csv"))
+        a.runs = max((x["run"] for x in r.rows if x.get("group") != "fig1"), default=0) + 1
+        a.width, a.height, a.spp = r.rows[0]["width"], r.rows[0]["height"], r.rows[0]["spp"]
+        a.only = set()
+    else:
+        run_all(a, r)
+    return report(a, r, meta, started)
+
+
+def run_all(a, r):
     confs = configurations(a)
     if a.select:
         confs = [c for c in confs if re.search(a.select, c[1])]
+    if "ceiling" in a.only and a.max_p > 1:
+        # In the same rounds as the configurations, so that a slow phase of a shared machine weighs on the ceiling
+        # as on the runs it is set against (measured first, on its own, it once came out 1.06x where the same
+        # rounds gave 1.37x).
+        confs = [("ceiling", "alone", "openmp", "tiles", "", 1, 1),
+                 ("ceiling", "together x%d" % a.max_p, "together", "tiles", "", 1, 1)] + confs
     r.rounds(confs, a.runs, a.spp)
     if "fig1" in a.only:
         fig1 = [("fig1", "fig1 openmp P=1", "openmp", "tiles", "", 1, 1),
@@ -341,6 +391,9 @@ def main(argv, meta=None):
             fig1 = [c for c in fig1 if re.search(a.select, c[1])]
         base_runs = a.fig1_base_runs if a.fig1_base_runs is not None else a.fig1_runs
         r.rounds(fig1, a.fig1_runs, a.fig1_spp, {"fig1 openmp P=1": base_runs})
+
+
+def report(a, r, meta, started):
     summary, slowdown, alone, together = summarise(r.rows, a.max_p)
     # fig1's baseline is its own one-thread run at its c.
     for s in summary:
@@ -353,8 +406,9 @@ def main(argv, meta=None):
                 s["wall_efficiency"] = s["wall_speedup"] / s["p"]
     meta = dict(meta or {})
     meta.setdefault("CPUs used", str(a.max_p))
-    meta["scaling time"] = "%.0f s" % (time.perf_counter() - started)
-    write_csv(os.path.join(a.out, "scaling_runs.csv"), r.rows, FIELDS)
+    if not a.summarise:
+        meta["scaling time"] = "%.0f s" % (time.perf_counter() - started)
+        write_csv(os.path.join(a.out, "scaling_runs.csv"), r.rows, FIELDS)
     write_csv(os.path.join(a.out, "scaling_summary.csv"), summary)
     plots = plot(a, summary)
     md = markdown(a, summary, slowdown, alone, together, meta)
