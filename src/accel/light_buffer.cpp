@@ -9,6 +9,8 @@
 #include <memory>
 
 #include "core/interrupt.h"
+#include "core/prefault.h"
+#include "parallel/median.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -112,11 +114,8 @@ Footprint footprint(const RelativeBox& box, int face, int res) {
 // primitives, in radians; a face spans 2 in u), at most 256. Finer cells list fewer
 // primitives a segment misses but list each primitive in more cells; on 10^6 spheres 256
 // renders fastest (of 64 to 1024), and on 10^2 spheres two cells per size (of 1 to 8).
-// `size` holds the sizes of the primitives of finite, nonzero distance, in primitive order.
-int resolutionFor(std::vector<float>& size) {
-  if (size.empty()) return 8;
-  std::nth_element(size.begin(), size.begin() + size.size() / 2, size.end());
-  const double median = size[size.size() / 2];
+// `median` is that of the sizes of the primitives at a finite, nonzero distance.
+int resolutionFor(double median) {
   if (!(median > 0)) return 256;
   return int(std::clamp(std::ceil(4 / median), 8.0, 256.0));
 }
@@ -127,7 +126,8 @@ void sizesFrom(const Vec3& light, const std::vector<LightBuffer::Occluder>& occl
   for (size_t i = lo; i < hi; ++i) {
     const Bounds& box = occluders[i].box;
     const double d = length(box.centroid() - light);
-    if (d > 0 && std::isfinite(d)) out.push_back(float(length(box.extent()) / d));
+    const float size = float(length(box.extent()) / d);
+    if (d > 0 && std::isfinite(d) && !std::isnan(size)) out.push_back(size);
   }
 }
 
@@ -213,6 +213,46 @@ void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& con
   }
 }
 
+// Every (cell, entry) pair of a light's block of primitives, as its footprints and cones give
+// them, and the primitives seen from everywhere.
+struct Listing {
+  uint32_t cell;
+  LightBuffer::Entry entry;
+};
+struct Part {
+  std::vector<Listing> listings;
+  std::vector<uint32_t> everywhere;
+};
+
+}  // namespace
+
+struct LightBuffer::BuildShared {
+  Bounds scene;                                   // around every occluder
+  std::vector<std::unique_ptr<CellCones>> cones;  // one for each resolution a light has had
+  // The batches' listings, kept from batch to batch (emptied, not freed): a big scene's lights
+  // go one a batch, and each would otherwise fault in tens of MB of fresh pages.
+  std::vector<Part> parts;
+
+  const CellCones& conesFor(int res, int threads) {
+    auto found = std::find_if(cones.begin(), cones.end(), [&](const auto& c) { return c->resolution() == res; });
+    if (found == cones.end()) found = cones.insert(cones.end(), std::make_unique<CellCones>(res, threads));
+    return **found;
+  }
+};
+
+namespace {
+
+Bounds boundsOf(const std::vector<LightBuffer::Occluder>& occluders, int threads) {
+  const Blocks blocks(occluders.size(), threads, kGrain);
+  std::vector<Bounds> parts(blocks.count);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i) parts[b].extend(occluders[i].box);
+  });
+  Bounds all;
+  for (const Bounds& b : parts) all.extend(b);
+  return all;
+}
+
 }  // namespace
 
 LightBuffer::LightBuffer(const Vec3& light, const std::vector<Occluder>& occluders, int threads)
@@ -226,9 +266,11 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
   std::vector<LightBuffer> out(lights.size());
   const size_t batch = std::max<size_t>(1, kBatchPairs / std::max<size_t>(1, occluders.size()));
   size_t left = memoryBytes;
+  BuildShared shared;
+  shared.scene = boundsOf(occluders, threads);
   for (size_t first = 0; first < lights.size() && !interrupt::requested(); first += batch) {
     const size_t n = std::min(batch, lights.size() - first);
-    std::vector<LightBuffer> built = buildBatch(lights.subspan(first, n), occluders, threads, left / n);
+    std::vector<LightBuffer> built = buildBatch(lights.subspan(first, n), occluders, threads, left / n, shared);
     bool anyFit = false;
     for (size_t k = 0; k < n; ++k) {
       anyFit = anyFit || !built[k].overMemoryLimit();
@@ -249,7 +291,7 @@ std::vector<LightBuffer> LightBuffer::build(std::span<const Vec3> lights, const 
 // All the lights' buffers at once, each step one parallel loop over the lights' blocks of
 // primitives or cells: a scene has fewer lights than a machine has threads.
 std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
-                                                 int threads, size_t shareBytes) {
+                                                 int threads, size_t shareBytes, BuildShared& kept) {
   const size_t count = lights.size();
   std::vector<LightBuffer> out(count);
   const Blocks blocks(occluders.size(), threads, kGrain);
@@ -268,21 +310,19 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
     sizesFrom(lights[pieces[p].light], occluders, blocks.begin(pieces[p].block), blocks.end(pieces[p].block),
               sizes[p]);
   });
-  parallelIndices(count, threads, [&](size_t l) {
-    std::vector<float> all;
-    for (size_t b = 0; b < blocks.count; ++b) {
-      std::vector<float>& part = sizes[l * blocks.count + b];
-      all.insert(all.end(), part.begin(), part.end());
-      std::vector<float>().swap(part);
-    }
+  // A batch of one light (a big scene's) counts each digit of its median on every thread; a
+  // batch of many finds one light's median on each.
+  parallelIndices(count, count == 1 ? 1 : threads, [&](size_t l) {
+    const std::span<const std::vector<float>> all(sizes.data() + l * blocks.count, blocks.count);
+    const float median = parallelMedian(all, count == 1 ? threads : 1);
     out[l].light_ = lights[l];
-    out[l].res_ = resolutionFor(all);
+    out[l].res_ = std::isnan(median) ? 8 : resolutionFor(median);
   });
+  std::vector<std::vector<float>>().swap(sizes);
   // Each light's windows: the footprint of the box around every primitive on each face (a
   // primitive's box lies inside it, its footprint inside the window). Then the resolution is
   // lowered, if need be, until the windows hold at most kCellsPerPrimitive cells a primitive.
-  Bounds scene;
-  for (const Occluder& o : occluders) scene.extend(o.box);
+  const Bounds& scene = kept.scene;
   const size_t mostCells = std::max<size_t>(6 * 8 * 8, kCellsPerPrimitive * occluders.size());
   parallelIndices(count, threads, [&](size_t l) {
     LightBuffer& b = out[l];
@@ -302,24 +342,11 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
       b.res_ = std::max(8, int(double(b.res_) * std::sqrt(double(mostCells) / double(base))) / 8 * 8);
     }
   });
-  std::vector<std::unique_ptr<CellCones>> cones;  // one for each resolution the lights have
   std::vector<const CellCones*> conesOf(count);
-  for (size_t l = 0; l < count; ++l) {
-    auto found = std::find_if(cones.begin(), cones.end(), [&](const auto& c) { return c->resolution() == out[l].res_; });
-    if (found == cones.end()) found = cones.insert(cones.end(), std::make_unique<CellCones>(out[l].res_, threads));
-    conesOf[l] = found->get();
-  }
+  for (size_t l = 0; l < count; ++l) conesOf[l] = &kept.conesFor(out[l].res_, threads);
 
   // Every (cell, entry) pair as the footprints and cones give them, a block of primitives at
   // a time, then moved to their cells: each footprint and cone is worked out once.
-  struct Listing {
-    uint32_t cell;
-    Entry entry;
-  };
-  struct Part {
-    std::vector<Listing> listings;
-    std::vector<uint32_t> everywhere;
-  };
   // Each light's entries: at most kEntriesPerPrimitive a primitive (`usual`), and what its
   // share of the memory leaves beside its cells. When a share is short of that, each light's
   // entries are counted first (a second pass over the footprints, only then), and the
@@ -364,7 +391,12 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
       }
     }
   }
-  std::vector<Part> parts(pieces.size());
+  std::vector<Part>& parts = kept.parts;
+  if (parts.size() < pieces.size()) parts.resize(pieces.size());
+  for (Part& part : parts) {
+    part.listings.clear();
+    part.everywhere.clear();
+  }
   std::vector<std::atomic<size_t>> listed(count);  // by a light's blocks done so far
   parallelIndices(pieces.size(), threads, [&](size_t p) {
     const size_t l = pieces[p].light;
@@ -405,7 +437,7 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
         interrupt::requested()) {
       // Too many primitives too big for cells: the BVH answers this light's segments better.
       buffer.everywhere_.clear();
-      for (size_t b = 0; b < blocks.count; ++b) std::vector<Listing>().swap(parts[l * blocks.count + b].listings);
+      for (size_t b = 0; b < blocks.count; ++b) parts[l * blocks.count + b].listings.clear();
       continue;
     }
     cells[l] = size_t(buffer.emptyCell_) + 1;
@@ -431,13 +463,15 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
       buffer.offsets_[c + 1] = buffer.offsets_[c] + filled[l][c];
       filled[l][c] = buffer.offsets_[c];
     }
-    buffer.entries_.resize(buffer.offsets_[cells[l]]);
   });
+  // Tens of MB for a big scene's light: its pages faulted in by every thread, not by one.
+  for (size_t l = 0; l < count; ++l)
+    if (cells[l] != 0) resizePrefaulted(out[l].entries_, out[l].offsets_[cells[l]], threads);
   parallelIndices(pieces.size(), threads, [&](size_t p) {
     std::vector<Entry>& entries = out[pieces[p].light].entries_;
     std::vector<uint32_t>& at = filled[pieces[p].light];
     for (const Listing& x : parts[p].listings) entries[bump(at[x.cell])] = x.entry;
-    std::vector<Listing>().swap(parts[p].listings);
+    parts[p].listings.clear();
   });
   constexpr size_t kCellsAtATime = 1024;
   std::vector<Piece> cellRuns;  // a light's cells [block x kCellsAtATime, ...)

@@ -116,10 +116,13 @@ class LightBuffer {
     if (di >= unsigned(w.width) || dj >= unsigned(w.height)) return emptyCell_;
     return int(w.base + dj * unsigned(w.width) + di);
   }
+  // What build()'s batches share: the scene's box, each resolution's cell cones, and the
+  // listings' memory (light_buffer.cpp).
+  struct BuildShared;
   // One batch of build(): each light's listings stop (and the light gets no buffer) beyond
   // `entryCap` entries.
   static std::vector<LightBuffer> buildBatch(std::span<const Vec3> lights, const std::vector<Occluder>& occluders,
-                                             int threads, size_t entryCap);
+                                             int threads, size_t entryCap, BuildShared& shared);
 
   Vec3 light_;
   int res_ = 1;                    // cells along each side of a face
