@@ -4,7 +4,8 @@
 # (../shared/tools/bundle.sh BUILD BUNDLE, or any folder with pvrt.sh and mpirun.sh that
 # start them), python3 is the only other need (matplotlib for the plot, if there).
 #   bench/many_core.sh BUNDLE OUT [--quick|--full] [PARTS]
-# PARTS, run in the order given: big, mpibench, ceilingcurve, scaling (default scaling,mpibench,big,ceilingcurve).
+# PARTS, run in the order given: big, mpibench, ceilingcurve, mpistart, scaling (default
+# scaling,mpibench,big,ceilingcurve,mpistart). BIG_THREADS, BIG_ROUNDS: the big part's thread counts and rounds.
 # DEADLINE=S stops the scaling part S seconds after the start, keeping the rounds it finished (the runs' CSV is
 # rewritten after every run), so a borrowed machine's time limit loses no finished measurement.
 # SCALING_ARGS replaces the arguments given to bench/speedup.py (e.g. a --select of a few
@@ -13,13 +14,13 @@
 # scaling.md / scaling_runs.csv / scaling_summary.csv (bench/speedup.py: OpenMP schedules, MPI strategies and
 # gathers, hybrid splits, the machine's ceiling, the c=256 setting), mpibench.csv (pvrt
 # mpi-bench at 2..N ranks), big.csv (the 10^6-sphere scene's stages and peak memory on 1 and
-# N threads), ceilingcurve.csv (1, 2, 4, .. N independent single-thread renders at once: where the machine's own
-# slow-down sets in) and logs.tgz (every run's output).
+# N threads; with BUNDLE/pvrt-base.sh, that build's too), ceilingcurve.csv (bench/ceiling_curve.py: each CPU
+# alone, then 2, 4 .. N at once, pinned), mpirun's own start cost (appended to machine.txt) and logs.tgz.
 set -uo pipefail
 bundle=$(cd "${1:?BUNDLE}" && pwd)
 out=${2:?OUT}
 quick=${3:-}
-parts=${4:-scaling,mpibench,big,ceilingcurve}
+parts=${4:-scaling,mpibench,big,ceilingcurve,mpistart}
 root=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -81,54 +82,64 @@ part_mpibench() {
   done
 }
 
-# k independent single-thread renders at once for k = 1, 2, 4 .. N, `reps` rounds: each one's render stage. If the
-# slow-down appears only past N/2, busy CPUs share physical cores; if it grows steadily, clock or memory.
+# Independent single-thread renders pinned to CPUs: each CPU alone, then 2, 4 .. N at once (bench/ceiling_curve.py).
 part_ceilingcurve() {
-  say "ceiling curve: 1..$n independent single-thread renders at once"
-  local ks="" k r j
-  for ((k = 1; k < n; k *= 2)); do ks="$ks $k"; done
-  ks="$ks $n"
-  echo "round,together,index,render_s" >"$out/ceilingcurve.csv"
-  for ((r = 0; r < 3; r++)); do
-    for k in $ks; do
-      for ((j = 0; j < k; j++)); do
-        "$pvrt" render "$root/scenes/paper1.xml" -o "$work/cc-$j.png" -W 640 -H 400 --sampler pov --spp 16 \
-          --threads 1 --stats --quiet >"$work/cc-$r-$k-$j.log" 2>&1 &
-      done
-      wait
-      for ((j = 0; j < k; j++)); do
-        t=$(sed -nE 's/.*render ([0-9.]+) s.*/\1/p' "$work/cc-$r-$k-$j.log" | head -1)
-        echo "$r,$k,$j,$t" >>"$out/ceilingcurve.csv"
-      done
-    done
+  say "ceiling curve: each CPU alone, then 2..$n at once"
+  python3 "$root/bench/ceiling_curve.py" --pvrt "$pvrt" --scene "$root/scenes/paper1.xml" --csv "$out/ceilingcurve.csv" \
+    --rounds "${CEILING_ROUNDS:-6}"
+}
+
+# What mpirun costs before and after the ranks' work: N ranks that only print their version (no MPI_Init), N ranks
+# rendering a 16 x 10 image (MPI_Init, the scene, the gather, MPI_Finalize), and one process rendering it.
+part_mpistart() {
+  say "mpirun's own cost at $n ranks"
+  local r t0
+  since() { awk -v a="$1" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.4f", b - a }'; }
+  echo "round,what,wall_s" >"$work/mpistart.csv"
+  for ((r = 0; r < 5; r++)); do
+    t0=$EPOCHREALTIME; "$mpirun" --bind-to none -np "$n" "$pvrt" --version >/dev/null 2>&1
+    echo "$r,mpirun -np $n pvrt --version,$(since "$t0")" >>"$work/mpistart.csv"
+    t0=$EPOCHREALTIME; "$mpirun" --bind-to none -np "$n" "$pvrt" render "$root/scenes/paper1.xml" -o "$work/ms.png" \
+      -W 16 -H 10 --backend mpi --quiet >/dev/null 2>&1
+    echo "$r,mpirun -np $n pvrt render 16x10 mpi,$(since "$t0")" >>"$work/mpistart.csv"
+    t0=$EPOCHREALTIME; "$pvrt" render "$root/scenes/paper1.xml" -o "$work/ms.png" -W 16 -H 10 --quiet >/dev/null 2>&1
+    echo "$r,pvrt render 16x10 one process,$(since "$t0")" >>"$work/mpistart.csv"
   done
-  rm -f "$work"/cc-*.png
+  cat "$work/mpistart.csv" >>"$out/machine.txt"
 }
 
 part_big() {
 say "$spheres spheres: load, build, render, write, peak memory on 1 and $n threads"
 "$pvrt" generate --spheres "$spheres" --lights 5 --seed 3 -o "$work/big.xml" >/dev/null
-python3 - "$pvrt" "$work" "$n" "$out/big.csv" <<'PY'
+# With BUNDLE/pvrt-base.sh (an earlier build), N-thread runs of both alternate, to set a change against its base.
+python3 - "$pvrt" "$work" "$n" "$out/big.csv" "${BIG_THREADS:-1 $n}" <<'PY'
 import os, re, subprocess, sys
-pvrt, work, n, csv = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+pvrt, work, n, csv, threads = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5].split()
+base = os.path.join(os.path.dirname(pvrt), "pvrt-base.sh")
+binaries = [("new", pvrt)] + ([("base", base)] if os.path.exists(base) else [])
+plan = []
+for rnd in range(int(os.environ.get("BIG_ROUNDS", "2"))):
+    for t in (threads if rnd % 2 == 0 else threads[::-1]):
+        for name, exe in (binaries if rnd % 2 == 0 else binaries[::-1]):
+            plan.append((rnd, int(t), name, exe))
 rows = []
-for rnd in range(2):
-    for t in ([1, n] if rnd % 2 == 0 else [n, 1]):
-        log = open(os.path.join(work, "big-t%d-r%d.log" % (t, rnd)), "w+")
-        p = subprocess.Popen([pvrt, "render", os.path.join(work, "big.xml"), "-o", os.path.join(work, "big.png"),
-                              "-W", "1280", "-H", "800", "--spp", "1", "--threads", str(t), "--stats", "--quiet"],
-                             stdout=log, stderr=subprocess.STDOUT)
-        _, status, usage = os.wait4(p.pid, 0)
-        log.seek(0)
-        text = log.read()
-        m = re.search(r"load ([\d.]+) s, build ([\d.]+) s, render ([\d.]+) s, write ([\d.]+) s", text)
-        bvh = re.search(r"BVH .* built in ([\d.]+) s", text)
-        lb = re.search(r"Light buffers .* built in ([\d.]+) s", text)
-        row = dict(threads=t, run=rnd, rc=os.waitstatus_to_exitcode(status), peak_rss_mib=usage.ru_maxrss / 1024,
-                   load_s=m and m[1], build_s=m and m[2], render_s=m and m[3], write_s=m and m[4],
-                   bvh_s=bvh and bvh[1], light_buffers_s=lb and lb[1])
-        print(row, flush=True)
-        rows.append(row)
+for rnd, t, name, exe in plan:
+    log = open(os.path.join(work, "big-%s-t%d-r%d.log" % (name, t, rnd)), "w+")
+    p = subprocess.Popen([exe, "render", os.path.join(work, "big.xml"), "-o", os.path.join(work, "big.png"),
+                          "-W", "1280", "-H", "800", "--spp", "1", "--threads", str(t), "--stats", "--quiet"],
+                         stdout=log, stderr=subprocess.STDOUT)
+    _, status, usage = os.wait4(p.pid, 0)
+    log.seek(0)
+    text = log.read()
+    m = re.search(r"load ([\d.]+) s, build ([\d.]+) s, render ([\d.]+) s, write ([\d.]+) s", text)
+    bvh = re.search(r"BVH .* built in ([\d.]+) s", text)
+    lb = re.search(r"Light buffers .* built in ([\d.]+) s", text)
+    row = dict(binary=name, threads=t, run=rnd, rc=os.waitstatus_to_exitcode(status),
+               peak_rss_mib=usage.ru_maxrss / 1024,
+               load_s=m and m[1], build_s=m and m[2], render_s=m and m[3], write_s=m and m[4],
+               bvh_s=bvh and bvh[1], light_buffers_s=lb and lb[1])
+    print(row, flush=True)
+    rows.append(row)
 with open(csv, "w") as f:
     f.write(",".join(rows[0]) + "\n")
     for r in rows:
@@ -139,8 +150,8 @@ rm -f "$work/big.xml"
 
 for part in ${parts//,/ }; do
   case $part in
-    scaling | mpibench | big | ceilingcurve) "part_$part" ;;
-    *) echo "many_core.sh: unknown part '$part' (scaling, mpibench, big, ceilingcurve)" >&2; exit 2 ;;
+    scaling | mpibench | big | ceilingcurve | mpistart) "part_$part" ;;
+    *) echo "many_core.sh: unknown part '$part' (scaling, mpibench, big, ceilingcurve, mpistart)" >&2; exit 2 ;;
   esac
 done
 rm -f "$work/scaling/speedup-image.png"
