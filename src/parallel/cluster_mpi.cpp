@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/output_files.h"
+#include "core/prefault.h"
 #include "parallel/cluster.h"
 #include "parallel/heartbeat.h"
 
@@ -291,7 +292,9 @@ std::vector<float> gatherv(const std::vector<float>& mine) {
       displs[size_t(r)] = int(total);
       total += counts[size_t(r)];
     }
-    all.resize(size_t(total));
+    // Its pages faulted in by the rank's threads first, not one by one inside MPI's copy (12 MB
+    // for a 1280x800 image: about 3000 faults, several ms, on the render's critical path).
+    resizePrefaulted(all, size_t(total), 0);
   }
   check(MPI_Gatherv(mine.data(), count, MPI_FLOAT, all.data(), counts.data(), displs.data(), MPI_FLOAT, 0,
                     MPI_COMM_WORLD),

@@ -11,7 +11,9 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/prefault.h"
 #include "parallel/cluster.h"
+#include "parallel/parallel_for.h"
 #include "render/kernel.h"
 
 namespace pvrt {
@@ -94,24 +96,26 @@ class RankRenderer {
 
   // This rank's share as a self-describing payload: [n, item indices..., then for each
   // item its rows of RGB, and its rows of work counts when there is a load map].
+  // Written by all the rank's threads, an item each, into pages they fault in themselves: on
+  // the render's critical path, between the last item and the gather.
   std::vector<float> payload() const {
+    const size_t perPixel = s_.loadMap ? 4 : 3;
+    std::vector<size_t> at(mine_.size() + 1, 1 + mine_.size());  // where each item's rows go
+    for (size_t k = 0; k < mine_.size(); ++k)
+      at[k + 1] = at[k] + size_t(plan_.items[size_t(mine_[k])].pixels()) * perPixel;
     std::vector<float> out;
-    size_t floats = 1 + mine_.size() + size_t(pixels_) * (s_.loadMap ? 4 : 3);
-    out.reserve(floats);
-    out.push_back(float(mine_.size()));
-    for (int i : mine_) out.push_back(float(i));  // exact: fewer than 2^24 items
-    for (int i : mine_) {
-      const WorkItem& it = plan_.items[size_t(i)];
-      for (int y = it.y0; y < it.y1; ++y) {
-        const float* row = image_.row(y) + size_t(it.x0) * 3;
-        out.insert(out.end(), row, row + size_t(it.x1 - it.x0) * 3);
-      }
+    resizePrefaulted(out, at.back(), threads_);
+    out[0] = float(mine_.size());
+    for (size_t k = 0; k < mine_.size(); ++k) out[1 + k] = float(mine_[k]);  // exact: fewer than 2^24 items
+    parallelIndices(mine_.size(), threads_, [&](size_t k) {
+      const WorkItem& it = plan_.items[size_t(mine_[k])];
+      const size_t w = size_t(it.x1 - it.x0);
+      float* to = out.data() + at[k];
+      for (int y = it.y0; y < it.y1; ++y, to += 3 * w) std::copy_n(image_.row(y) + size_t(it.x0) * 3, 3 * w, to);
       if (s_.loadMap)
-        for (int y = it.y0; y < it.y1; ++y) {
-          const float* row = load_.data() + size_t(y) * size_t(s_.width) + size_t(it.x0);
-          out.insert(out.end(), row, row + (it.x1 - it.x0));
-        }
-    }
+        for (int y = it.y0; y < it.y1; ++y, to += w)
+          std::copy_n(load_.data() + size_t(y) * size_t(s_.width) + size_t(it.x0), w, to);
+    });
     return out;
   }
 
@@ -150,23 +154,35 @@ class RankRenderer {
   long pixels_ = 0;
 };
 
-// Unpacks concatenated payloads (RankRenderer::payload) into the image and load map.
-void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r, int width) {
+// Unpacks concatenated payloads (RankRenderer::payload) into the image and load map: first
+// where each item lies in them, then the items copied on up to `threads` threads (the image's
+// pages are first touched there).
+void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r, int width, int threads) {
+  struct Placed {
+    size_t item, at;
+  };
+  std::vector<Placed> placed;
+  const size_t perPixel = r.load.empty() ? 3 : 4;
   size_t at = 0;
   while (at < all.size()) {
     const size_t n = size_t(all[at++]);
     const size_t firstIndex = at;
     at += n;
     for (size_t k = 0; k < n; ++k) {
-      const WorkItem& it = plan.items[size_t(all[firstIndex + k])];
-      const size_t w = size_t(it.x1 - it.x0);
-      for (int y = it.y0; y < it.y1; ++y, at += 3 * w)
-        std::copy_n(all.data() + at, 3 * w, r.image.row(y) + size_t(it.x0) * 3);
-      if (!r.load.empty())
-        for (int y = it.y0; y < it.y1; ++y, at += w)
-          std::copy_n(all.data() + at, w, r.load.data() + size_t(y) * size_t(width) + size_t(it.x0));
+      const size_t item = size_t(all[firstIndex + k]);
+      placed.push_back({item, at});
+      at += size_t(plan.items[item].pixels()) * perPixel;
     }
   }
+  parallelIndices(placed.size(), threads, [&](size_t k) {
+    const WorkItem& it = plan.items[placed[k].item];
+    const size_t w = size_t(it.x1 - it.x0);
+    const float* from = all.data() + placed[k].at;
+    for (int y = it.y0; y < it.y1; ++y, from += 3 * w) std::copy_n(from, 3 * w, r.image.row(y) + size_t(it.x0) * 3);
+    if (!r.load.empty())
+      for (int y = it.y0; y < it.y1; ++y, from += w)
+        std::copy_n(from, w, r.load.data() + size_t(y) * size_t(width) + size_t(it.x0));
+  });
 }
 
 void maybeSlow(const DistributedSettings& d) {
@@ -355,7 +371,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   RenderResult& r = out.render;
   r.image = Image::unfilled(s.width, s.height);  // the payloads cover every pixel
   if (s.loadMap) r.load.assign(size_t(s.width) * s.height, 0.0f);
-  unpack(all, plan, r, s.width);
+  unpack(all, plan, r, s.width, local.threads());
   cropToArea(r, s);
   r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);
   const size_t k = packed.size();
