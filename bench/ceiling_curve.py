@@ -54,7 +54,7 @@ def main(argv):
                 for cpu, (p, log) in procs:
                     rows.append(dict(round=rnd, mode="together", together=k, cpu=cpu, render_s=finish(p, log)))
             with open(a.csv, "w", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=list(rows[0]))
+                w = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
                 w.writeheader()
                 w.writerows(rows)
             alone = [r["render_s"] for r in rows if r["round"] == rnd and r["mode"] == "alone" and r["render_s"]]
