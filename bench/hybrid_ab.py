@@ -44,7 +44,7 @@ def main(argv):
 
     confs = [("openmp%d" % n, a.new, 0, n)]
     for exe, tag in ((a.new, "new"), (a.base, "base")):
-        for ranks in (2, 4, n):
+        for ranks in sorted({2, 4, n}):
             if n % ranks == 0:
                 confs.append(("%dx%d-%s" % (ranks, n // ranks, tag), exe, ranks, n // ranks))
     rows = []
