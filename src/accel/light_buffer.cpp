@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <memory>
 
@@ -47,6 +48,12 @@ int cellOf(double u, int res) {
   if (!(x >= 0)) return 0;
   if (x >= res) return res - 1;
   return int(x);
+}
+
+// A cell's order, nearest first and then by primitive, as one integer: a distance is a float
+// of at least +0 (never -0 or NaN), whose bits order as the numbers do.
+uint64_t sortKey(const LightBuffer::Entry& e) {
+  return uint64_t(std::bit_cast<uint32_t>(e.near)) << 32 | e.primitive;
 }
 
 float roundDown(double v) {
@@ -482,9 +489,7 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
     const size_t first = cellRuns[r].block * kCellsAtATime;
     for (size_t c = first; c < std::min(cells[cellRuns[r].light], first + kCellsAtATime); ++c)
       std::sort(buffer.entries_.begin() + buffer.offsets_[c], buffer.entries_.begin() + buffer.offsets_[c + 1],
-                [](const Entry& x, const Entry& y) {
-                  return x.near < y.near || (x.near == y.near && x.primitive < y.primitive);
-                });
+                [](const Entry& x, const Entry& y) { return sortKey(x) < sortKey(y); });
   });
   return out;
 }
