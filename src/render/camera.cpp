@@ -1,5 +1,6 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -55,9 +56,10 @@ Camera::Camera(const CameraDesc& desc) {
 // is (x + dx, y + dy) in pixels, moved to the pixel centre by x + 0.5 and y - 0.5, and
 // the row counted from the bottom as ((height - 1) - y) / height.
 Ray Camera::ray(int x, int y, double dx, double dy, int width, int height) const {
-  const double px = (double(x) + dx) + 0.5, py = (double(y) + dy) - 0.5;
-  const double u = px / width - 0.5;
-  const double v = (double(height - 1) - py) / height - 0.5;
+  return rayAt(planeU(x, dx, width), planeV(y, dy, height));
+}
+
+Ray Camera::rayAt(double u, double v) const {
   const Vec3 d = direction_ + right_ * u + up_ * v;
   return {location_, d * (1.0 / length(d))};
 }
@@ -80,6 +82,31 @@ void Camera::rays(int x, int y, const SubSample* offsets, int count, int width, 
     for (int i = 0; i < 4; ++i) out[k + i] = {location_, {dir[0][i], dir[1][i], dir[2][i]}};
   }
   for (; k < count; ++k) out[k] = ray(x, y, offsets[k].dx, offsets[k].dy, width, height);
+}
+
+void Camera::raysAt(const double* u, const double* v, int count, Ray* out) const {
+  using namespace lanes;
+  const Double4 one = splat(1.0);
+  // Lane by lane rayAt()'s operations, in its order; the last one to three rays go as a
+  // group of four padded with copies of the last, so no ray takes the scalar path's
+  // serial square root and division.
+  for (int k = 0; k < count; k += 4) {
+    const int live = std::min(4, count - k);
+    Double4 lu, lv;
+    if (live == 4) {
+      lu = load(u + k), lv = load(v + k);
+    } else {
+      const int last = k + live - 1;
+      lu = set(u[k], u[std::min(k + 1, last)], u[std::min(k + 2, last)], u[last]);
+      lv = set(v[k], v[std::min(k + 1, last)], v[std::min(k + 2, last)], v[last]);
+    }
+    Double4 d[3];
+    for (int a = 0; a < 3; ++a) d[a] = splat(direction_[a]) + splat(right_[a]) * lu + splat(up_[a]) * lv;
+    const Double4 inv = one / lanes::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double dir[3][4];
+    for (int a = 0; a < 3; ++a) store(dir[a], d[a] * inv);
+    for (int i = 0; i < live; ++i) out[k + i] = {location_, {dir[0][i], dir[1][i], dir[2][i]}};
+  }
 }
 
 }  // namespace pvrt

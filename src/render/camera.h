@@ -21,6 +21,18 @@ class Camera {
   // ray() for each.
   void rays(int x, int y, const SubSample* offsets, int count, int width, int height, Ray* out) const;
 
+  // The two quotients of ray(): the image-plane coordinate u of column x + dx and v of
+  // row y + dy. They depend on the column or the row alone, so a kernel whose pixels all
+  // take the same offsets can make them once per column and once per row (CameraGrid).
+  static double planeU(int x, double dx, int width) { return ((double(x) + dx) + 0.5) / width - 0.5; }
+  static double planeV(int y, double dy, int height) {
+    return (double(height - 1) - ((double(y) + dy) - 0.5)) / height - 0.5;
+  }
+  // The ray through plane coordinates (u, v), and rayAt() for `count` of them four at a
+  // time: ray() is rayAt(planeU(..), planeV(..)), bit for bit.
+  Ray rayAt(double u, double v) const;
+  void raysAt(const double* u, const double* v, int count, Ray* out) const;
+
   const Vec3& location() const { return location_; }
   const Vec3& direction() const { return direction_; }
   const Vec3& right() const { return right_; }

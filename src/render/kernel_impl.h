@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "render/adaptive_kernel.h"
+#include "render/camera_grid.h"
 #include "render/kernel.h"
 #include "render/pixel_value.h"
 #include "render/tracer.h"
@@ -79,18 +81,30 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
       if (sampler.restartsAt(from + k)) bits |= uint64_t(1) << k;
     return bits;
   };
+  const int perPixel = total - firstSample;
+  const uint64_t pixelStarts = restarts(firstSample, perPixel);
+  // With the same offsets for every pixel, the camera's quotients once per column and row.
+  std::optional<CameraGrid> grid;
+  if (sampler.sameOffsetsEveryPixel()) {
+    sampler.offsets(rect.x0, rect.y0, offsets);
+    grid.emplace(scene.camera, offsets, rect.x0, rect.x1, w, h);
+  }
   for (int y = rect.y0; y < rect.y1; ++y) {
+    if (grid) grid->setRow(y);
     for (int x = rect.x0; x < rect.x1; ++x) {
       if (group > 1 && x % group == 0 && x + group <= rect.x1) {
         tracer.beginPixel();
         size_t first[kMaxPacketPixels + 1] = {};  // pixel i's rays are [first[i], first[i + 1])
         uint64_t starts = 0;
         for (int i = 0; i < group; ++i) {
-          sampler.offsets(x + i, y, offsets);
-          scene.camera.rays(x + i, y, offsets.data(), int(offsets.size()), w, h, rays.data() + first[i]);
-          first[i + 1] = first[i] + offsets.size();
-          starts |= restarts(firstSample, int(offsets.size())) << first[i];
+          if (!grid) {
+            sampler.offsets(x + i, y, offsets);
+            scene.camera.rays(x + i, y, offsets.data(), perPixel, w, h, rays.data() + first[i]);
+          }
+          first[i + 1] = first[i] + size_t(perPixel);
+          starts |= pixelStarts << first[i];
         }
+        if (grid) grid->rays(x, group, rays.data());
         stats.primaryRays += uint64_t(first[group]);
         tracer.setPixelStarts(starts);
         tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
@@ -105,8 +119,8 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
         x += group - 1;
         continue;
       }
-      sampler.offsets(x, y, offsets);
-      const int n = int(offsets.size());
+      if (!grid) sampler.offsets(x, y, offsets);
+      const int n = perPixel;
       const uint64_t before = stats.work();
       PixelSum sum = out.start(x, y);
       bool finite = true;
@@ -114,8 +128,8 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
         for (int k = 0; k < n; ++k) {
           if (sampler.restartsAt(firstSample + k)) tracer.beginPixel();
           ++stats.primaryRays;
-          colors[size_t(k)] = tracer.trace(scene.camera.ray(x, y, offsets[size_t(k)].dx, offsets[size_t(k)].dy, w, h),
-                                           0, 1.0, scene.cameraInteriors);
+          const Ray ray = grid ? grid->ray(x, k) : scene.camera.ray(x, y, offsets[size_t(k)].dx, offsets[size_t(k)].dy, w, h);
+          colors[size_t(k)] = tracer.trace(ray, 0, 1.0, scene.cameraInteriors);
         }
         finite = finiteSamples(colors.data(), size_t(n), stats);
         for (int k = 0; k < n; ++k) sum.add(colors[size_t(k)]);
@@ -125,7 +139,10 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
           const int count = to - from;
           if (sampler.restartsAt(from)) tracer.beginPixel();
           tracer.setPixelStarts(restarts(from, count) | 1);
-          scene.camera.rays(x, y, offsets.data() + (from - firstSample), count, w, h, rays.data());
+          if (grid)
+            grid->rays(x, from - firstSample, count, rays.data());
+          else
+            scene.camera.rays(x, y, offsets.data() + (from - firstSample), count, w, h, rays.data());
           stats.primaryRays += uint64_t(count);
           tracer.tracePacket(rays.data(), count, scene.cameraInteriors, colors.data());
           finite = finiteSamples(colors.data(), size_t(count), stats) && finite;

@@ -52,6 +52,9 @@ class PixelSampler {
   void offsets(int x, int y, std::vector<SubSample>& out) const;
   int count() const { return count_; }
   int firstSample() const { return first_; }
+  // Whether offsets() gives every pixel the same offsets (pov and grid; not jitter or
+  // sequence, which shift them pixel by pixel).
+  bool sameOffsetsEveryPixel() const { return s_.kind == SamplerKind::Pov || s_.kind == SamplerKind::Grid; }
   // Whether the shadow cache starts empty at sample k of a pixel (render/tracer.h keeps it
   // from one sample to the next within a pixel, as POV-Ray keeps it from ray to ray): at
   // sample 0 for every sampler, and at every sample for sequence, whose samples are each

@@ -86,6 +86,19 @@ class Tracer {
                              stats_.intersectionTests);
     const size_t lights = scene_.lights.size();
     known_.resize(lights);
+    // Bit k set where ray k hit: a group of four misses (the sky of most scenes) has no
+    // light to find, nor shadows, so its lanes skip the square roots and divisions below.
+    uint64_t hitBits = 0;
+    for (int k = 0; k < count; ++k) hitBits |= uint64_t(hits[k].has_value()) << k;
+    if (hitBits == 0) {
+      // A packet of misses has nothing to set up or shade: its rays see the background,
+      // and the shadow cache ends as the shading loop below would leave it.
+      std::fill(out, out + count, scene_.background);
+      const uint64_t rays = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
+      if (pixelStarts_ & rays & ~uint64_t(1)) beginPixel();
+      pixelStarts_ = 1;
+      return;
+    }
     // The hit points and normals a component per array (zeros for misses and for the
     // lanes past `count`, whose answers are never read).
     const int padded = (count + 3) & ~3;
@@ -113,7 +126,7 @@ class Tracer {
       nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
       pointError_[k] = length(points_[k].error);
     }
-    if constexpr ((E & kShadows) != 0) measureShadowShifts(padded);
+    if constexpr ((E & kShadows) != 0) measureShadowShifts(padded, hitBits);
     for (size_t j = 0; j < lights; ++j) {
       using namespace lanes;
       PacketLight& pl = known_[j];
@@ -121,6 +134,13 @@ class Tracer {
       const Double4 lx = splat(at.x), ly = splat(at.y), lz = splat(at.z), eps = splat(kPovEpsilon);
       pl.lit = 0;
       for (int k = 0; k < padded; k += 4) {
+        if (((hitBits >> k) & 0xFu) == 0) {
+          // What the arithmetic below gives a miss's zero point and normal, but the
+          // direction and distance: never lit, so never read but by masked lanes.
+          const Double4 zero = splat(0.0);
+          store(pl.dirX + k, zero), store(pl.dirY + k, zero), store(pl.dirZ + k, zero), store(pl.dist + k, zero);
+          continue;
+        }
         // Lane by lane the operations of length(), the reciprocal and dot(), in their order.
         const Double4 tx = lx - load(px_ + k), ty = ly - load(py_ + k), tz = lz - load(pz_ + k);
         const Double4 dist = lanes::sqrt(tx * tx + ty * ty + tz * tz);
@@ -637,6 +657,7 @@ class Tracer {
   // earlier ray of its pixel, as segmentTransmittance() does. (Across pixels POV-Ray's cache
   // depends on the order its threads took the tiles; pvrt starts every pixel empty.)
   void applyShadowCache(int count, PacketLight& pl) {
+    if (pl.lit == 0) return;  // the cache below is only tried by lit rays
     uint32_t cached = kNoCache;
     for (int k = 0; k < count; ++k) {
       if ((pixelStarts_ >> k) & 1) cached = kNoCache;
@@ -655,11 +676,16 @@ class Tracer {
 
   // How far each hit's shadow origin lies from its point (length(), lane by lane), and in
   // served_ the lanes whose segments the light buffers may answer (bufferServes).
-  void measureShadowShifts(int padded) {
+  void measureShadowShifts(int padded, uint64_t hitBits) {
     using namespace lanes;
     const Double4 limit = splat(0.5 * LightBuffer::kMargin * scene_.tol.shadow);
     served_ = 0;
     for (int k = 0; k < padded; k += 4) {
+      if (((hitBits >> k) & 0xFu) == 0) {  // misses' origins are zeros, as their points
+        store(shadowShift_ + k, splat(0.0));
+        served_ |= uint64_t(0xFu) << k;
+        continue;
+      }
       const Double4 x = load(shadowX_ + k) - load(px_ + k), y = load(shadowY_ + k) - load(py_ + k),
                     z = load(shadowZ_ + k) - load(pz_ + k);
       const Double4 shift = lanes::sqrt(x * x + y * y + z * z);

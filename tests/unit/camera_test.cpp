@@ -1,7 +1,9 @@
 #include "render/camera.h"
+#include "render/camera_grid.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -63,6 +65,43 @@ TEST(Camera, RaysOfAPixelAreExactlyItsRays) {
       EXPECT_EQ(rays[size_t(k)].origin, one.origin);
       EXPECT_EQ(rays[size_t(k)].dir, one.dir) << "ray " << k << " of " << count;
     }
+  }
+}
+
+// The kernel's rays from per-column and per-row quotients (CameraGrid) must be the bits of
+// ray() too, for every count of rays a call may make, the last one to three padded.
+TEST(Camera, GridRaysAreExactlyItsRays) {
+  CameraDesc desc;
+  desc.location = {0.3, 6.1, -14.7};
+  desc.lookAt = Vec3{0.2, 1.1, 2.9};
+  desc.right = {1.6, 0, 0};
+  const Camera cam{desc};
+  std::vector<SubSample> offsets;
+  for (int i = 0; i < 17; ++i) offsets.push_back({-0.5 + 0.37 * i / 7.0, 0.49 - 0.051 * i});
+  const int width = 1279, height = 801, x0 = 1200, x1 = 1279;
+  CameraGrid grid(cam, offsets, x0, x1, width, height);
+  std::vector<Ray> rays(4 * offsets.size());
+  // Ray k of pixel x as the one-at-a-time path gives it, against `got`.
+  auto check = [&](int x, int y, int k, const Ray& got) {
+    const Ray one = cam.ray(x, y, offsets[size_t(k)].dx, offsets[size_t(k)].dy, width, height);
+    EXPECT_EQ(got.origin, one.origin);
+    EXPECT_EQ(got.dir, one.dir) << "pixel " << x << " row " << y << " ray " << k;
+    EXPECT_EQ(grid.ray(x, k).dir, one.dir);
+  };
+  const int n = int(offsets.size());
+  for (int y : {0, 3, 800}) {
+    grid.setRow(y);
+    for (int pixels : {1, 2, 4}) {  // whole pixels: 17, 34 and 68 rays
+      const int x = x1 - pixels;
+      grid.rays(x, pixels, rays.data());
+      for (int i = 0; i < pixels; ++i)
+        for (int k = 0; k < n; ++k) check(x + i, y, k, rays[size_t(i * n + k)]);
+    }
+    for (int from : {0, 5})  // part of one pixel's rays
+      for (int count : {1, 2, 3, 4, 7, 12}) {
+        grid.rays(x0, from, count, rays.data());
+        for (int k = 0; k < count; ++k) check(x0, y, from + k, rays[size_t(k)]);
+      }
   }
 }
 
