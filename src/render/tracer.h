@@ -201,9 +201,11 @@ class Tracer {
     // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
     pointCells_ = scene_.prefetchLightBuffers && known < 0;
     pointShadowOrigin_.reset();
+    const povcolour::WideColour pigment = povcolour::widened(povcolour::rounded(pig.rgb));  // for every light
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
-      lit = lit + lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
+      lit = lit + lightContribution(scene_.lights[j], s, pig, pigment, alpha, ray, sp, n, inside,
+                                    known >= 0 ? &kl : nullptr);
     }
     Color result = povcolour::toColor(lit);
     pointCells_ = false;
@@ -390,6 +392,7 @@ class Tracer {
     FilterColor pig[4] = {m[0]->color, m[1]->color, m[2]->color, m[3]->color};
     double alpha[4];
     povcolour::FloatColour lit[4];  // each lane's colour: its ambient, then each light's term added
+    povcolour::WideColour pigment[4];  // each lane's pigment rounded to floats, for every light
     unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
     const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
@@ -405,8 +408,14 @@ class Tracer {
       }
       alpha[i] = 1.0 - pig[i].filter - pig[i].transmit;
       lit[i] = povcolour::ambient(pig[i].rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha[i]);
+      pigment[i] = povcolour::widened(povcolour::rounded(pig[i].rgb));
     }
     stats_.shadingOps += 4;
+    // diffuse x attenuation, POV-Ray's inner product of the diffuse intensity, is the same
+    // for every light: formed once.
+    const bool diffuses = f.diffuse > 0;
+    const lanes::Double4 diffuseAlpha =
+        lanes::splat(f.diffuse) * lanes::set(alpha[0], alpha[1], alpha[2], alpha[3]);
     for (size_t j = 0; j < lights; ++j) {
       const Light& light = scene_.lights[j];
       const PacketLight& pl = known_[j];
@@ -424,23 +433,34 @@ class Tracer {
             gives = 0;
         }
       }
-      // POV-Ray's float colour operations, lane by lane as lightContribution does them.
+      if (gives == 0) continue;
+      // POV-Ray's float colour operations, lane by lane as lightContribution does them; the
+      // light's colour rounded and widened once for the four.
+      const povcolour::FloatColour lightColour = povcolour::rounded(intensity);
+      const povcolour::WideColour lightWide = povcolour::widened(lightColour);
+      // The four lanes' cos x (diffuse x attenuation), each lane lightContribution's operations.
+      double intensities[4];
+      if (diffuses) {
+        using namespace lanes;
+        const Double4 nl = load(nx_ + k0) * load(pl.dirX + k0) + load(ny_ + k0) * load(pl.dirY + k0) +
+                           load(nz_ + k0) * load(pl.dirZ + k0);
+        store(intensities, nl * diffuseAlpha);
+      }
+      bool phong = false, specular = false;
+      if constexpr ((E & kHighlights) != 0) {
+        phong = s.highlights && !light.shadowless && f.phong > 0;
+        specular = s.highlights && !light.shadowless && f.specular > 0;
+      }
       for (int i = 0; i < 4; ++i) {
         if (!(gives >> i & 1u)) continue;
         const int k = k0 + i;
-        const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
         povcolour::FloatColour c;
-        if (f.diffuse > 0) {
-          const double nl = nx_[k] * l.x + ny_[k] * l.y + nz_[k] * l.z;
-          c = povcolour::diffuse(pig[i].rgb, nl, f.diffuse, alpha[i], intensity);
-        }
-        if constexpr ((E & kHighlights) != 0) {
-          if (s.highlights && !light.shadowless) {
-            if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, rays[k].dir, normals_[k], l), 0, {});
-            if (f.specular > 0)
-              c = c + highlight(f, intensity,
-                                shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l), 0, {});
-          }
+        if (diffuses) c = povcolour::diffuse(pigment[i], intensities[i], lightColour);
+        if (phong || specular) {
+          const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
+          if (phong) c = c + highlight(lightWide, shading::phong(f, rays[k].dir, normals_[k], l));
+          if (specular)
+            c = c + highlight(lightWide, shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l));
         }
         lit[i] = lit[i] + c;
       }
@@ -671,17 +691,24 @@ class Tracer {
   // A Phong or specular term h of one light: intensity x h, the light colour tinted first
   // where metallic (ComputeSpecularColour: only Metallic > 0), rounded as POV-Ray's float
   // colour is.
-  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, double h, double nl,
-                                         const Color& pigment) {
+  // `wide` is `light` rounded to floats and widened (povcolour::widened).
+  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, const povcolour::WideColour& wide,
+                                         double h, double nl, const Color& pigment) {
     if (!(h > 0)) return {};
-    if (!(f.metallic > 0)) return povcolour::highlight(light, h);
+    if (!(f.metallic > 0)) return povcolour::highlight(wide, h);
     const Color hc = light * h * shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pigment);
     return {float(hc.r), float(hc.g), float(hc.b)};
   }
+  // The same without a metallic tint (shadeFour's plain surfaces).
+  static povcolour::FloatColour highlight(const povcolour::WideColour& wide, double h) {
+    return h > 0 ? povcolour::highlight(wide, h) : povcolour::FloatColour{};
+  }
 
-  povcolour::FloatColour lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
-                          const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
-                          const KnownLight* known) {
+  // `pigment` is pig.rgb rounded to floats and widened, once for all the point's lights.
+  povcolour::FloatColour lightContribution(const Light& light, const Surface& s, const FilterColor& pig,
+                                           const povcolour::WideColour& pigment, double alpha, const Ray& ray,
+                                           const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
+                                           const KnownLight* known) {
     const Vec3& p = sp.p;
     cacheSlot_ = size_t(&light - scene_.lights.data());
     Vec3 l;
@@ -717,16 +744,19 @@ class Tracer {
     }
     const FinishDesc& f = s.finish;
     // POV-Ray's float colour operations, term by term (render/pov_colour.h).
+    const povcolour::FloatColour lightColour = povcolour::rounded(intensity);
+    const povcolour::WideColour lightWide = povcolour::widened(lightColour);
     povcolour::FloatColour c;
     if (f.diffuse > 0) {
       const double k = f.brilliance == 1 ? nl : std::pow(nl, f.brilliance);
-      c = povcolour::diffuse(pig.rgb, k, f.diffuse, alpha, intensity);
+      c = povcolour::diffuse(pigment, k * (f.diffuse * alpha), lightColour);
     }
     if constexpr ((E & kHighlights) != 0) {
       if (s.highlights && !light.shadowless) {
-        if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
+        if (f.phong > 0) c = c + highlight(f, intensity, lightWide, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
         if (f.specular > 0)
-          c = c + highlight(f, intensity, shading::specular(f, s.specularExponent, ray.dir, n, l), nl, pig.rgb);
+          c = c + highlight(f, intensity, lightWide, shading::specular(f, s.specularExponent, ray.dir, n, l), nl,
+                            pig.rgb);
       }
     }
     return c;
