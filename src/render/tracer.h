@@ -159,6 +159,14 @@ class Tracer {
   // Forgets the shadow cache; called at every pixel so that the work counted for a
   // pixel never depends on which pixel the thread rendered before it.
   void beginPixel() { std::fill(shadowCache_.begin(), shadowCache_.end(), kNoCache); }
+  // The cache entry of light `slot` written by the shadow tests of a level-1 hit or of a
+  // deeper one, and the object such a test tries first: a level-1 test borrows the deeper
+  // tests' object while its own entry is empty, as TracePointLightShadowRay does.
+  uint32_t& cacheEntry(size_t slot, bool levelOne) { return shadowCache_[levelOne ? slot : slot + shadowCache_.size() / 2]; }
+  uint32_t cachedBlocker(size_t slot, bool levelOne) {
+    const uint32_t own = cacheEntry(slot, levelOne);
+    return levelOne && own == kNoCache ? cacheEntry(slot, false) : own;
+  }
   // Bit k set where ray k of the next tracePacket() starts a pixel (by default only ray 0):
   // the shadow cache is kept within a pixel.
   void setPixelStarts(uint64_t bits) { pixelStarts_ = bits; }
@@ -201,6 +209,7 @@ class Tracer {
     // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
     pointCells_ = scene_.prefetchLightBuffers && known < 0;
     pointShadowOrigin_.reset();
+    levelOneShadows_ = level == 1;
     const povcolour::WideColour pigment = povcolour::widened(povcolour::rounded(pig.rgb));  // for every light
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
@@ -652,24 +661,31 @@ class Tracer {
     applyShadowCache(count, pl);
   }
 
-  // POV-Ray's shadow cache among the rays of one pixel, in sample order: a ray whose segment
-  // the full test left open tries the opaque object that last blocked this light for an
-  // earlier ray of its pixel, as segmentTransmittance() does. (Across pixels POV-Ray's cache
-  // depends on the order its threads took the tiles; pvrt starts every pixel empty.)
+  // POV-Ray's shadow cache for the packet's (level-1) hits, in ray order, as
+  // segmentTransmittance() does it: a ray tries the opaque object that last blocked this
+  // light first, over [MIN_ISECT_DEPTH, dist); only where that misses does the full test's
+  // answer count, and its opaque blocker becomes the cached object. The cache goes on from
+  // the packet before unless ray 0 starts a pixel (pixelStarts_), and is left for the next.
+  // (Across pixels POV-Ray's cache depends on the order its threads took the tiles; the
+  // plain kernel starts every pixel empty, the adaptive one every block.)
   void applyShadowCache(int count, PacketLight& pl) {
-    uint32_t cached = kNoCache;
+    const size_t j = size_t(&pl - known_.data());
+    uint32_t& levelOne = cacheEntry(j, true);
+    uint32_t deeper = cacheEntry(j, false);  // no deeper ray of this packet has been traced yet
     for (int k = 0; k < count; ++k) {
-      if ((pixelStarts_ >> k) & 1) cached = kNoCache;
+      if ((pixelStarts_ >> k) & 1) levelOne = deeper = kNoCache;
       if (!((pl.lit >> k) & 1)) continue;
-      if (Occlusion(pl.occlusion[k]) == Occlusion::Blocked) {
-        cached = blocker_[k];
-        continue;
+      const uint32_t cached = levelOne != kNoCache ? levelOne : deeper;
+      const bool blocked = Occlusion(pl.occlusion[k]) == Occlusion::Blocked;
+      if (cached != kNoCache && !(blocked && blocker_[k] == cached)) {
+        ++stats_.intersectionTests;
+        if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
+                                 scene_.tol.minDepth, pl.dist[k])) {
+          pl.occlusion[k] = uint8_t(Occlusion::Blocked);
+          continue;
+        }
       }
-      if (cached == kNoCache) continue;
-      ++stats_.intersectionTests;
-      if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
-                               scene_.tol.minDepth, pl.dist[k]))
-        pl.occlusion[k] = uint8_t(Occlusion::Blocked);
+      if (blocked) levelOne = blocker_[k];
     }
   }
 
@@ -827,7 +843,7 @@ class Tracer {
 
   // POV-Ray's shadow cache: the object that last blocked this light is tried first.
   bool blockedByCachedObject(const Ray& segment, double dist) {
-    const uint32_t cached = shadowCache_[cacheSlot_];
+    const uint32_t cached = cachedBlocker(cacheSlot_, levelOneShadows_);
     if (cached == kNoCache) return false;
     // TracePointLightShadowRay tries the cached object over [MIN_ISECT_DEPTH, depth),
     // not the full test's (SHADOW_TOLERANCE, depth - SHADOW_TOLERANCE): in a crease it
@@ -843,7 +859,7 @@ class Tracer {
                            const ClosestHit* first = nullptr) {
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
-      case Occlusion::Blocked: shadowCache_[cacheSlot_] = blocker; return {};  // tried first next time
+      case Occlusion::Blocked: cacheEntry(cacheSlot_, levelOneShadows_) = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
     return orderedTransmittance(origin, dir, dist, inside, buffer, cell, first);
@@ -1070,8 +1086,12 @@ class Tracer {
   std::optional<ShadowOrigin> pointShadowOrigin_;
   std::vector<uint32_t> shadowCandidates_;  // orderedTransmittance: what its steps may meet
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
-  std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
+  // POV-Ray's two shadow caches per light (TracePointLightShadowRay): the first half for
+  // the shadow tests of hits at trace level 1 (lightSourceLevel1ShadowCache), the second for
+  // deeper ones (lightSourceOtherShadowCache); see cachedBlocker.
+  std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(2 * (scene_.lights.size() + 1), kNoCache);
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
+  bool levelOneShadows_ = true;  // whether the shadow tests being made are of a level-1 hit
   std::vector<Color> cache_;
   const InteriorList* areaInside_ = nullptr;  // interiors the current area-light samples start in
   std::vector<AreaSegment> areaSegments_;  // the current point's, one per sample of the light
