@@ -16,8 +16,9 @@ namespace pvrt {
 
 // What the block algorithms ask for, answered with Tracer<E>: every ray is a camera ray.
 // The tracer's shadow cache starts empty at each block and is kept from ray to ray within
-// it, in the block's fixed order: POV-Ray keeps it along its thread's whole run of blocks,
-// which no schedule-independent image can do; the plain kernel empties it at each pixel.
+// it, packets included, in the block's fixed order (POV-Ray's): POV-Ray keeps it along its
+// thread's whole run of blocks, which no schedule-independent image can do; the plain
+// kernel empties it at each pixel.
 template <EffectSet E>
 class AdaptiveSource {
  public:
@@ -73,9 +74,11 @@ class AdaptiveSource {
     if (size_t(n) < kMinPacket) {
       for (int k = 0; k < n; ++k) colors_[size_t(k)] = tracer_.trace(rays_[size_t(k)], 0, 1.0, scene_.cameraInteriors);
     } else {
-      for (int at = 0; at < n; at += kMaxPacket)
+      for (int at = 0; at < n; at += kMaxPacket) {
+        tracer_.setPixelStarts(0);  // the cache goes on from the rays before, in the block's order
         tracer_.tracePacket(rays_.data() + at, std::min(kMaxPacket, n - at), scene_.cameraInteriors,
                             colors_.data() + at);
+      }
     }
     finiteSamples(colors_.data(), size_t(n), stats_);
   }

@@ -5,46 +5,85 @@
 // POV-Ray's side (docs/fidelity.md: light_point). The terms stay floats until the last sum:
 // converting each back to a double would be the double(float(x)) that GCC 12's vectoriser
 // drops (core/single.h).
+//
+// With AVX a colour is one register of four float lanes (r, g, b, 0) and its double form one
+// of four double lanes: a rounding is one conversion instruction for the three channels, and
+// the compiler sees intrinsics, not a double(float(x)) it could drop. Every lane does the
+// IEEE operation the scalar form does, so both give the same bits (tests/unit/pov_colour_test.cpp).
 #pragma once
 
 #include "core/color.h"
 
+#if defined(__AVX__) && !defined(PVRT_LANES_SCALAR)
+#include <immintrin.h>
+#define PVRT_POV_COLOUR_LANES 1
+#endif
+
 namespace pvrt::povcolour {
+
+#if defined(PVRT_POV_COLOUR_LANES)
+
+struct FloatColour {
+  __m128 v = _mm_setzero_ps();
+  FloatColour() = default;
+  explicit FloatColour(__m128 x) : v(x) {}
+  FloatColour(float r, float g, float b) : v(_mm_setr_ps(r, g, b, 0)) {}
+};
+// A FloatColour widened to doubles (exact), kept where one colour is scaled many times.
+struct WideColour {
+  __m256d v;
+};
+// c rounded to floats (a pigment that a pattern blended in double, a light after its
+// attenuation); exact for a colour stored rounded (core/single.h).
+inline FloatColour rounded(const Color& c) { return FloatColour(_mm256_cvtpd_ps(_mm256_setr_pd(c.r, c.g, c.b, 0))); }
+inline WideColour widened(const FloatColour& c) { return {_mm256_cvtps_pd(c.v)}; }
+inline Color toColor(const FloatColour& c) {
+  alignas(32) double d[4];
+  _mm256_store_pd(d, _mm256_cvtps_pd(c.v));
+  return {d[0], d[1], d[2]};
+}
+inline FloatColour operator+(const FloatColour& a, const FloatColour& b) { return FloatColour(_mm_add_ps(a.v, b.v)); }
+inline FloatColour operator*(const FloatColour& a, const FloatColour& b) { return FloatColour(_mm_mul_ps(a.v, b.v)); }
+// RGBColour * DBL: each product in double, then rounded.
+inline FloatColour scaled(const WideColour& c, double k) {
+  return FloatColour(_mm256_cvtpd_ps(_mm256_mul_pd(c.v, _mm256_set1_pd(k))));
+}
+
+#else
 
 struct FloatColour {
   float r = 0, g = 0, b = 0;
 };
-// A colour whose channels are floats already (pigments, finishes and lights are rounded at
-// load, core/single.h): exact.
-inline FloatColour fromStored(const Color& c) { return {float(c.r), float(c.g), float(c.b)}; }
+struct WideColour {
+  double r, g, b;
+};
+inline FloatColour rounded(const Color& c) { return {float(c.r), float(c.g), float(c.b)}; }
+inline WideColour widened(const FloatColour& c) { return {c.r, c.g, c.b}; }
 inline Color toColor(const FloatColour& c) { return {c.r, c.g, c.b}; }
-
 inline FloatColour operator+(const FloatColour& a, const FloatColour& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
 inline FloatColour operator*(const FloatColour& a, const FloatColour& b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
-// RGBColour * DBL: each product in double, then rounded.
-inline FloatColour scaled(const FloatColour& c, double k) {
-  return {float(double(c.r) * k), float(double(c.g) * k), float(double(c.b) * k)};
-}
+inline FloatColour scaled(const WideColour& c, double k) { return {float(c.r * k), float(c.g * k), float(c.b * k)}; }
+
+#endif
+
+inline FloatColour scaled(const FloatColour& c, double k) { return scaled(widened(c), k); }
 
 // The surface's own light: pigment x ambient x ambient_light x opacity, plus pigment x
 // emission x opacity.
 inline FloatColour ambient(const Color& pigment, const Color& ambient, const Color& ambientLight,
                            const Color& emission, double opacity) {
-  const FloatColour p = fromStored(pigment);
-  return scaled(p * fromStored(ambient) * fromStored(ambientLight), opacity) +
-         scaled(p * fromStored(emission), opacity);
+  const FloatColour p = rounded(pigment);
+  return scaled(p * rounded(ambient) * rounded(ambientLight), opacity) + scaled(p * rounded(emission), opacity);
 }
 
-// ComputeDiffuseColour: intensity = cos^brilliance times (diffuse x attenuation) in double,
-// then (intensity x pigment) x light colour.
-inline FloatColour diffuse(const Color& pigment, double cosPower, double diffuse, double attenuation,
-                           const Color& light) {
-  return scaled(fromStored(pigment), cosPower * (diffuse * attenuation)) * fromStored(light);
+// ComputeDiffuseColour: intensity = cos^brilliance x (diffuse x attenuation) in double (the
+// caller's, so that the inner product is formed once for all lights), then (intensity x
+// pigment) x light colour. The pigment comes widened, once per hit point for all its lights.
+inline FloatColour diffuse(const WideColour& pigment, double intensity, const FloatColour& light) {
+  return scaled(pigment, intensity) * light;
 }
 
 // ComputePhongColour, ComputeSpecularColour: intensity x light colour.
-inline FloatColour highlight(const Color& light, double intensity) {
-  return scaled(fromStored(light), intensity);
-}
+inline FloatColour highlight(const WideColour& light, double intensity) { return scaled(light, intensity); }
 
 }  // namespace pvrt::povcolour

@@ -95,7 +95,17 @@ class Tracer {
       // and the shadow cache ends as the shading loop below would leave it.
       std::fill(out, out + count, scene_.background);
       const uint64_t rays = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
-      if (pixelStarts_ & rays & ~uint64_t(1)) beginPixel();
+      if (pixelStarts_ & rays & ~uint64_t(1)) {
+        beginPixel();  // as the shading loop does at a pixel starting after ray 0
+      } else if constexpr ((E & kShadows) != 0) {
+        // applyShadowCache empties a light's level-1 entry where ray 0 starts a pixel
+        // (resolveShadows calls it for the lights it tests as a packet).
+        if (pixelStarts_ & 1)
+          for (size_t j = 0; j < lights; ++j) {
+            const Light& light = scene_.lights[j];
+            if (!light.shadowless && !((E & kAreaLights) != 0 && light.area)) cacheEntry(j, true) = kNoCache;
+          }
+      }
       pixelStarts_ = 1;
       return;
     }
@@ -179,6 +189,14 @@ class Tracer {
   // Forgets the shadow cache; called at every pixel so that the work counted for a
   // pixel never depends on which pixel the thread rendered before it.
   void beginPixel() { std::fill(shadowCache_.begin(), shadowCache_.end(), kNoCache); }
+  // The cache entry of light `slot` written by the shadow tests of a level-1 hit or of a
+  // deeper one, and the object such a test tries first: a level-1 test borrows the deeper
+  // tests' object while its own entry is empty, as TracePointLightShadowRay does.
+  uint32_t& cacheEntry(size_t slot, bool levelOne) { return shadowCache_[levelOne ? slot : slot + shadowCache_.size() / 2]; }
+  uint32_t cachedBlocker(size_t slot, bool levelOne) {
+    const uint32_t own = cacheEntry(slot, levelOne);
+    return levelOne && own == kNoCache ? cacheEntry(slot, false) : own;
+  }
   // Bit k set where ray k of the next tracePacket() starts a pixel (by default only ray 0):
   // the shadow cache is kept within a pixel.
   void setPixelStarts(uint64_t bits) { pixelStarts_ = bits; }
@@ -221,9 +239,12 @@ class Tracer {
     // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
     pointCells_ = scene_.prefetchLightBuffers && known < 0;
     pointShadowOrigin_.reset();
+    levelOneShadows_ = level == 1;
+    const povcolour::WideColour pigment = povcolour::widened(povcolour::rounded(pig.rgb));  // for every light
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
       const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
-      lit = lit + lightContribution(scene_.lights[j], s, pig, alpha, ray, sp, n, inside, known >= 0 ? &kl : nullptr);
+      lit = lit + lightContribution(scene_.lights[j], s, pig, pigment, alpha, ray, sp, n, inside,
+                                    known >= 0 ? &kl : nullptr);
     }
     Color result = povcolour::toColor(lit);
     pointCells_ = false;
@@ -410,6 +431,7 @@ class Tracer {
     FilterColor pig[4] = {m[0]->color, m[1]->color, m[2]->color, m[3]->color};
     double alpha[4];
     povcolour::FloatColour lit[4];  // each lane's colour: its ambient, then each light's term added
+    povcolour::WideColour pigment[4];  // each lane's pigment rounded to floats, for every light
     unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
     const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
@@ -425,8 +447,14 @@ class Tracer {
       }
       alpha[i] = 1.0 - pig[i].filter - pig[i].transmit;
       lit[i] = povcolour::ambient(pig[i].rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha[i]);
+      pigment[i] = povcolour::widened(povcolour::rounded(pig[i].rgb));
     }
     stats_.shadingOps += 4;
+    // diffuse x attenuation, POV-Ray's inner product of the diffuse intensity, is the same
+    // for every light: formed once.
+    const bool diffuses = f.diffuse > 0;
+    const lanes::Double4 diffuseAlpha =
+        lanes::splat(f.diffuse) * lanes::set(alpha[0], alpha[1], alpha[2], alpha[3]);
     for (size_t j = 0; j < lights; ++j) {
       const Light& light = scene_.lights[j];
       const PacketLight& pl = known_[j];
@@ -444,23 +472,34 @@ class Tracer {
             gives = 0;
         }
       }
-      // POV-Ray's float colour operations, lane by lane as lightContribution does them.
+      if (gives == 0) continue;
+      // POV-Ray's float colour operations, lane by lane as lightContribution does them; the
+      // light's colour rounded and widened once for the four.
+      const povcolour::FloatColour lightColour = povcolour::rounded(intensity);
+      const povcolour::WideColour lightWide = povcolour::widened(lightColour);
+      // The four lanes' cos x (diffuse x attenuation), each lane lightContribution's operations.
+      double intensities[4];
+      if (diffuses) {
+        using namespace lanes;
+        const Double4 nl = load(nx_ + k0) * load(pl.dirX + k0) + load(ny_ + k0) * load(pl.dirY + k0) +
+                           load(nz_ + k0) * load(pl.dirZ + k0);
+        store(intensities, nl * diffuseAlpha);
+      }
+      bool phong = false, specular = false;
+      if constexpr ((E & kHighlights) != 0) {
+        phong = s.highlights && !light.shadowless && f.phong > 0;
+        specular = s.highlights && !light.shadowless && f.specular > 0;
+      }
       for (int i = 0; i < 4; ++i) {
         if (!(gives >> i & 1u)) continue;
         const int k = k0 + i;
-        const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
         povcolour::FloatColour c;
-        if (f.diffuse > 0) {
-          const double nl = nx_[k] * l.x + ny_[k] * l.y + nz_[k] * l.z;
-          c = povcolour::diffuse(pig[i].rgb, nl, f.diffuse, alpha[i], intensity);
-        }
-        if constexpr ((E & kHighlights) != 0) {
-          if (s.highlights && !light.shadowless) {
-            if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, rays[k].dir, normals_[k], l), 0, {});
-            if (f.specular > 0)
-              c = c + highlight(f, intensity,
-                                shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l), 0, {});
-          }
+        if (diffuses) c = povcolour::diffuse(pigment[i], intensities[i], lightColour);
+        if (phong || specular) {
+          const Vec3 l{pl.dirX[k], pl.dirY[k], pl.dirZ[k]};
+          if (phong) c = c + highlight(lightWide, shading::phong(f, rays[k].dir, normals_[k], l));
+          if (specular)
+            c = c + highlight(lightWide, shading::specular(f, s.specularExponent, rays[k].dir, normals_[k], l));
         }
         lit[i] = lit[i] + c;
       }
@@ -652,25 +691,31 @@ class Tracer {
     applyShadowCache(count, pl);
   }
 
-  // POV-Ray's shadow cache among the rays of one pixel, in sample order: a ray whose segment
-  // the full test left open tries the opaque object that last blocked this light for an
-  // earlier ray of its pixel, as segmentTransmittance() does. (Across pixels POV-Ray's cache
-  // depends on the order its threads took the tiles; pvrt starts every pixel empty.)
+  // POV-Ray's shadow cache for the packet's (level-1) hits, in ray order, as
+  // segmentTransmittance() does it: a ray tries the opaque object that last blocked this
+  // light first, over [MIN_ISECT_DEPTH, dist); only where that misses does the full test's
+  // answer count, and its opaque blocker becomes the cached object. The cache goes on from
+  // the packet before unless ray 0 starts a pixel (pixelStarts_), and is left for the next.
+  // (Across pixels POV-Ray's cache depends on the order its threads took the tiles; the
+  // plain kernel starts every pixel empty, the adaptive one every block.)
   void applyShadowCache(int count, PacketLight& pl) {
-    if (pl.lit == 0) return;  // the cache below is only tried by lit rays
-    uint32_t cached = kNoCache;
+    const size_t j = size_t(&pl - known_.data());
+    uint32_t& levelOne = cacheEntry(j, true);
+    uint32_t deeper = cacheEntry(j, false);  // no deeper ray of this packet has been traced yet
     for (int k = 0; k < count; ++k) {
-      if ((pixelStarts_ >> k) & 1) cached = kNoCache;
+      if ((pixelStarts_ >> k) & 1) levelOne = deeper = kNoCache;
       if (!((pl.lit >> k) & 1)) continue;
-      if (Occlusion(pl.occlusion[k]) == Occlusion::Blocked) {
-        cached = blocker_[k];
-        continue;
+      const uint32_t cached = levelOne != kNoCache ? levelOne : deeper;
+      const bool blocked = Occlusion(pl.occlusion[k]) == Occlusion::Blocked;
+      if (cached != kNoCache && !(blocked && blocker_[k] == cached)) {
+        ++stats_.intersectionTests;
+        if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
+                                 scene_.tol.minDepth, pl.dist[k])) {
+          pl.occlusion[k] = uint8_t(Occlusion::Blocked);
+          continue;
+        }
       }
-      if (cached == kNoCache) continue;
-      ++stats_.intersectionTests;
-      if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
-                               scene_.tol.minDepth, pl.dist[k]))
-        pl.occlusion[k] = uint8_t(Occlusion::Blocked);
+      if (blocked) levelOne = blocker_[k];
     }
   }
 
@@ -697,17 +742,24 @@ class Tracer {
   // A Phong or specular term h of one light: intensity x h, the light colour tinted first
   // where metallic (ComputeSpecularColour: only Metallic > 0), rounded as POV-Ray's float
   // colour is.
-  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, double h, double nl,
-                                         const Color& pigment) {
+  // `wide` is `light` rounded to floats and widened (povcolour::widened).
+  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, const povcolour::WideColour& wide,
+                                         double h, double nl, const Color& pigment) {
     if (!(h > 0)) return {};
-    if (!(f.metallic > 0)) return povcolour::highlight(light, h);
+    if (!(f.metallic > 0)) return povcolour::highlight(wide, h);
     const Color hc = light * h * shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pigment);
     return {float(hc.r), float(hc.g), float(hc.b)};
   }
+  // The same without a metallic tint (shadeFour's plain surfaces).
+  static povcolour::FloatColour highlight(const povcolour::WideColour& wide, double h) {
+    return h > 0 ? povcolour::highlight(wide, h) : povcolour::FloatColour{};
+  }
 
-  povcolour::FloatColour lightContribution(const Light& light, const Surface& s, const FilterColor& pig, double alpha,
-                          const Ray& ray, const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
-                          const KnownLight* known) {
+  // `pigment` is pig.rgb rounded to floats and widened, once for all the point's lights.
+  povcolour::FloatColour lightContribution(const Light& light, const Surface& s, const FilterColor& pig,
+                                           const povcolour::WideColour& pigment, double alpha, const Ray& ray,
+                                           const SurfacePoint& sp, const Vec3& n, const InteriorList& inside,
+                                           const KnownLight* known) {
     const Vec3& p = sp.p;
     cacheSlot_ = size_t(&light - scene_.lights.data());
     Vec3 l;
@@ -743,16 +795,19 @@ class Tracer {
     }
     const FinishDesc& f = s.finish;
     // POV-Ray's float colour operations, term by term (render/pov_colour.h).
+    const povcolour::FloatColour lightColour = povcolour::rounded(intensity);
+    const povcolour::WideColour lightWide = povcolour::widened(lightColour);
     povcolour::FloatColour c;
     if (f.diffuse > 0) {
       const double k = f.brilliance == 1 ? nl : std::pow(nl, f.brilliance);
-      c = povcolour::diffuse(pig.rgb, k, f.diffuse, alpha, intensity);
+      c = povcolour::diffuse(pigment, k * (f.diffuse * alpha), lightColour);
     }
     if constexpr ((E & kHighlights) != 0) {
       if (s.highlights && !light.shadowless) {
-        if (f.phong > 0) c = c + highlight(f, intensity, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
+        if (f.phong > 0) c = c + highlight(f, intensity, lightWide, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
         if (f.specular > 0)
-          c = c + highlight(f, intensity, shading::specular(f, s.specularExponent, ray.dir, n, l), nl, pig.rgb);
+          c = c + highlight(f, intensity, lightWide, shading::specular(f, s.specularExponent, ray.dir, n, l), nl,
+                            pig.rgb);
       }
     }
     return c;
@@ -823,7 +878,7 @@ class Tracer {
 
   // POV-Ray's shadow cache: the object that last blocked this light is tried first.
   bool blockedByCachedObject(const Ray& segment, double dist) {
-    const uint32_t cached = shadowCache_[cacheSlot_];
+    const uint32_t cached = cachedBlocker(cacheSlot_, levelOneShadows_);
     if (cached == kNoCache) return false;
     // TracePointLightShadowRay tries the cached object over [MIN_ISECT_DEPTH, depth),
     // not the full test's (SHADOW_TOLERANCE, depth - SHADOW_TOLERANCE): in a crease it
@@ -839,7 +894,7 @@ class Tracer {
                            const ClosestHit* first = nullptr) {
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
-      case Occlusion::Blocked: shadowCache_[cacheSlot_] = blocker; return {};  // tried first next time
+      case Occlusion::Blocked: cacheEntry(cacheSlot_, levelOneShadows_) = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
     return orderedTransmittance(origin, dir, dist, inside, buffer, cell, first);
@@ -1066,8 +1121,12 @@ class Tracer {
   std::optional<ShadowOrigin> pointShadowOrigin_;
   std::vector<uint32_t> shadowCandidates_;  // orderedTransmittance: what its steps may meet
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
-  std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(scene_.lights.size() + 1, kNoCache);
+  // POV-Ray's two shadow caches per light (TracePointLightShadowRay): the first half for
+  // the shadow tests of hits at trace level 1 (lightSourceLevel1ShadowCache), the second for
+  // deeper ones (lightSourceOtherShadowCache); see cachedBlocker.
+  std::vector<uint32_t> shadowCache_ = std::vector<uint32_t>(2 * (scene_.lights.size() + 1), kNoCache);
   size_t cacheSlot_ = 0;  // the light being tested (area-light samples share its slot)
+  bool levelOneShadows_ = true;  // whether the shadow tests being made are of a level-1 hit
   std::vector<Color> cache_;
   const InteriorList* areaInside_ = nullptr;  // interiors the current area-light samples start in
   std::vector<AreaSegment> areaSegments_;  // the current point's, one per sample of the light
