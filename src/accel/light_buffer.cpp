@@ -236,8 +236,9 @@ struct Part {
 struct LightBuffer::BuildShared {
   Bounds scene;                                   // around every occluder
   std::vector<std::unique_ptr<CellCones>> cones;  // one for each resolution a light has had
-  // The batches' listings, kept from batch to batch (emptied, not freed): a big scene's lights
-  // go one a batch, and each would otherwise fault in tens of MB of fresh pages.
+  // The batches' listings, kept from batch to batch (emptied, not freed, while they fit in the
+  // next batch's share): a big scene's lights go one a batch, and each would otherwise fault
+  // in tens of MB of fresh pages.
   std::vector<Part> parts;
 
   const CellCones& conesFor(int res, int threads) {
@@ -399,6 +400,12 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
     }
   }
   std::vector<Part>& parts = kept.parts;
+  // What the batches before left counts toward this batch's share; more than the share is given
+  // back first, so that the build never holds more than its memory limit allows.
+  size_t retained = 0;
+  for (const Part& part : parts)
+    retained += part.listings.capacity() * sizeof(Listing) + part.everywhere.capacity() * sizeof(uint32_t);
+  if (retained > shareBytes * count) std::vector<Part>().swap(parts);
   if (parts.size() < pieces.size()) parts.resize(pieces.size());
   for (Part& part : parts) {
     part.listings.clear();
