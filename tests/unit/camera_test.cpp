@@ -47,16 +47,26 @@ TEST(Camera, SampleArithmeticIsPovRaysBitForBit) {
   EXPECT_EQ(r.dir.z, d.z * inv);
 }
 
-// The packet path computes four rays at a time; every one must be bit for bit the ray
-// the one-at-a-time path gives (the determinism of every backend rests on it).
-TEST(Camera, RaysOfAPixelAreExactlyItsRays) {
+// A camera looking down and along at a slant, and `n` sub-sample offsets spread over the
+// pixel: the rays of the packet and grid paths are checked against ray() with these.
+Camera tiltedCamera() {
   CameraDesc desc;
   desc.location = {0.3, 6.1, -14.7};
   desc.lookAt = Vec3{0.2, 1.1, 2.9};
   desc.right = {1.6, 0, 0};
-  const Camera cam{desc};
+  return Camera{desc};
+}
+std::vector<SubSample> spreadOffsets(int n) {
   std::vector<SubSample> offsets;
-  for (int i = 0; i < 19; ++i) offsets.push_back({-0.5 + 0.37 * i / 7.0, 0.49 - 0.051 * i});
+  for (int i = 0; i < n; ++i) offsets.push_back({-0.5 + 0.37 * i / 7.0, 0.49 - 0.051 * i});
+  return offsets;
+}
+
+// The packet path computes four rays at a time; every one must be bit for bit the ray
+// the one-at-a-time path gives (the determinism of every backend rests on it).
+TEST(Camera, RaysOfAPixelAreExactlyItsRays) {
+  const Camera cam = tiltedCamera();
+  const std::vector<SubSample> offsets = spreadOffsets(19);
   std::vector<Ray> rays(offsets.size());
   for (int count : {1, 3, 4, 17, 19}) {
     cam.rays(1279, 3, offsets.data(), count, 1280, 800, rays.data());
@@ -71,13 +81,8 @@ TEST(Camera, RaysOfAPixelAreExactlyItsRays) {
 // The kernel's rays from per-column and per-row quotients (CameraGrid) must be the bits of
 // ray() too, for every count of rays a call may make, the last one to three padded.
 TEST(Camera, GridRaysAreExactlyItsRays) {
-  CameraDesc desc;
-  desc.location = {0.3, 6.1, -14.7};
-  desc.lookAt = Vec3{0.2, 1.1, 2.9};
-  desc.right = {1.6, 0, 0};
-  const Camera cam{desc};
-  std::vector<SubSample> offsets;
-  for (int i = 0; i < 17; ++i) offsets.push_back({-0.5 + 0.37 * i / 7.0, 0.49 - 0.051 * i});
+  const Camera cam = tiltedCamera();
+  const std::vector<SubSample> offsets = spreadOffsets(17);
   const int width = 1279, height = 801, x0 = 1200, x1 = 1279;
   CameraGrid grid(cam, offsets, x0, x1, width, height);
   std::vector<Ray> rays(4 * offsets.size());
