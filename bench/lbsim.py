@@ -73,7 +73,7 @@ class Image:
         return np.bincount(np.arange(source.size) % p, weights=source, minlength=p)
 
 
-def simulate(work, strategy, p, tau_f, tau_s, tau_b, tile=32, f=0.0, k=1.0, bytes_per_pixel=12):
+def simulate(work, strategy, p, tau_f, tau_s, tau_b, tile=32, f=0.0, k=1.0, bytes_per_pixel=3):
     """Predicted seconds, speedup and efficiency of one configuration (work: a map or an Image)."""
     img = work if isinstance(work, Image) else Image(work)
     slow, n_slow = slow_factors(p, f, k)

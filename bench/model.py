@@ -11,7 +11,8 @@ Time of a render on P workers (ranks or threads):
   scheduling of their rows).
 * T_comm: collecting the image on rank 0 from a ping-pong's latency tau_s and seconds per byte tau_b:
   MPI_Gatherv (P - 1) tau_s + tau_b B (P - 1) / P, recursive doubling ceil(log2 P) tau_s + tau_b B (P - 1) / P,
-  B = bytes of the image in flight (pvrt sends 12 bytes a pixel). OpenMP: 0.
+  B = bytes of the image in flight (pvrt sends 3 bytes a pixel for a PNG or TGA, as sRGB; 12 for an EXR;
+  4 more with a load map). OpenMP: 0.
 
 Memory (the paper's formulas, bytes over all ranks): L lights of 24 bytes and B balls of 96 bytes in every rank,
 plus the image: recursive doubling 3XY (1 + log2(P) / 2), MPI_Gather 6XY.
@@ -104,7 +105,7 @@ def openmp_time_units(work, schedule, chunk, p):
     return list_schedule(chunks, p)
 
 
-def gather_seconds(kind, p, pixels, tau_s, tau_b, bytes_per_pixel=12):
+def gather_seconds(kind, p, pixels, tau_s, tau_b, bytes_per_pixel=3):
     if p <= 1:
         return 0.0
     volume = tau_b * pixels * bytes_per_pixel * (p - 1) / p

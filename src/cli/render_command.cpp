@@ -480,6 +480,7 @@ int runMpi(const RenderOptions& o) {
   DistributedSettings d;
   d.gather = parseGather(o.gatherName);
   d.masterRenders = o.masterRenders;
+  d.eightBit = isEightBitFormat(imageFormatOf(o.output));
   if (const char* slow = std::getenv("PVRT_SLOW_RANK"); slow && std::strchr(slow, ':')) {
     d.slowRank = std::atoi(slow);
     d.slowMillis = std::atoi(std::strchr(slow, ':') + 1);
@@ -500,9 +501,13 @@ int runMpi(const RenderOptions& o) {
   if (me != 0) return 0;  // only rank 0 writes
   const RenderSettings& s = p->settings;
   const auto t2 = Clock::now();
-  stageImage(*out, o.output, r.render.image);
-  if (!o.loadMap.empty())
-    stageLoadMap(*out, o.loadMap, r.render.load, r.render.image.width(), r.render.image.height());
+  if (d.eightBit) {
+    const std::string format = imageFormatOf(o.output);
+    writeImageFile8(r.rgb8, r.width, r.height, out->stage(o.output, format), format, o.output);
+  } else {
+    stageImage(*out, o.output, r.render.image);
+  }
+  if (!o.loadMap.empty()) stageLoadMap(*out, o.loadMap, r.render.load, r.width, r.height);
   if (!o.saveScene.empty()) out->stageBytes(o.saveScene, p->savedScene);
   const double writeS = since(t2);  // encoding; the commit renames
   stageStatsJson(*out, o, s, p->scene, r.render, stageFigures(*p, writeS, nullptr), r.ranks);
@@ -510,8 +515,7 @@ int runMpi(const RenderOptions& o) {
   warnNonFinite(r.render.totals);
   if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, {p->loadPeak, p->buildPeak}, r.ranks);
   if (!o.quiet && !o.stats)
-    fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, r.render.image.width(),
-               r.render.image.height(), cluster::size(),
+    fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, r.width, r.height, cluster::size(),
                r.render.seconds);
   return 0;
 }

@@ -99,14 +99,18 @@ struct LevelTable {
 
 }  // namespace
 
-std::vector<uint8_t> encodeSrgb8(const Image& image) {
+void encodeSrgb8(const float* linear, size_t count, uint8_t* out) {
   static const LevelTable table;
+  for (size_t i = 0; i < count; ++i) out[i] = table.level(linear[i]);
+}
+
+std::vector<uint8_t> encodeSrgb8(const Image& image) {
   const Image::Pixels& src = image.data();
   std::vector<uint8_t> out(src.size());
   constexpr size_t kBlock = size_t(1) << 16;  // values a thread takes at a time
   parallelIndices((src.size() + kBlock - 1) / kBlock, 0, [&](size_t block) {
-    const size_t end = std::min(src.size(), (block + 1) * kBlock);
-    for (size_t i = block * kBlock; i < end; ++i) out[i] = table.level(src[i]);
+    const size_t begin = block * kBlock, end = std::min(src.size(), begin + kBlock);
+    encodeSrgb8(src.data() + begin, end - begin, out.data() + begin);
   });
   return out;
 }
@@ -123,18 +127,32 @@ std::string imageFormatOf(const std::string& path) {
                                    "\": unsupported image format (use .png, .tga or .exr)");
 }
 
+namespace {
+
+std::string lowerCase(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace
+
+bool isEightBitFormat(const std::string& extension) { return lowerCase(extension) != ".exr"; }
+
 void writeImageFile(const Image& image, const std::string& path, const std::string& extension,
                     const std::string& name) {
-  std::string ext = extension;
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  std::string why;
-  if (ext == ".png") {
-    why = writePng8(path, image.width(), image.height(), encodeSrgb8(image).data());
-  } else if (ext == ".exr") {
-    why = oiioModule().write(path, image.width(), image.height(), true, image.data().data());
-  } else {
-    why = oiioModule().write(path, image.width(), image.height(), false, encodeSrgb8(image).data());
+  if (isEightBitFormat(extension)) {
+    writeImageFile8(encodeSrgb8(image), image.width(), image.height(), path, extension, name);
+    return;
   }
+  const std::string why = oiioModule().write(path, image.width(), image.height(), true, image.data().data());
+  if (!why.empty()) throw outputError(name, why);
+}
+
+void writeImageFile8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path,
+                     const std::string& extension, const std::string& name) {
+  if (!isEightBitFormat(extension)) throw Error(ExitCode::Internal, "writeImageFile8: " + extension + " is not 8-bit");
+  const std::string why = lowerCase(extension) == ".png" ? writePng8(path, width, height, rgb.data())
+                                                         : oiioModule().write(path, width, height, false, rgb.data());
   if (!why.empty()) throw outputError(name, why);
 }
 

@@ -16,8 +16,11 @@ namespace pvrt {
 
 // POV-Ray's 8-bit encoding of one linear value: floor(sRGB(clip(v)) * 255 + 0.5).
 uint8_t encodeSrgb8(double linear);
-// The whole image encoded as interleaved 8-bit RGB.
+// The whole image encoded as interleaved 8-bit RGB (on every thread).
 std::vector<uint8_t> encodeSrgb8(const Image& image);
+// `count` linear values encoded one by one, as encodeSrgb8(double) does, into out[0, count)
+// (on the calling thread: for a part of an image, e.g. an MPI rank's share).
+void encodeSrgb8(const float* linear, size_t count, uint8_t* out);
 
 // The format `path` is written in, as its extension: .png, .tga or .exr by its name; .png for
 // standard output ("-"), a device or a FIFO whose name has no extension. Throws
@@ -28,6 +31,13 @@ std::string imageFormatOf(const std::string& path);
 // output as the user gave it.
 void writeImageFile(const Image& image, const std::string& path, const std::string& extension,
                     const std::string& name);
+// Whether `extension` (as imageFormatOf gives it) is written as 8-bit sRGB (.png, .tga), so
+// that an image already encoded can be written by writeImageFile8.
+bool isEightBitFormat(const std::string& extension);
+// An image already encoded as interleaved 8-bit RGB (encodeSrgb8), written as writeImageFile
+// would write the float image it came from: the same bytes.
+void writeImageFile8(const std::vector<uint8_t>& rgb, int width, int height, const std::string& path,
+                     const std::string& extension, const std::string& name);
 // The whole write of one image on its own: checked, staged, committed.
 void writeImage(const Image& image, const std::string& path);
 // Reads PNG, or any format OpenImageIO knows, as 8-bit RGB (for comparisons against golden PNGs).

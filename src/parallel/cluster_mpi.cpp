@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -278,52 +281,72 @@ void abortAll(int code) {
   std::abort();  // not reached
 }
 
-std::vector<float> gatherv(const std::vector<float>& mine) {
-  Timed timed(mine.size() * sizeof(float));
+namespace {
+
+template <class T>
+MPI_Datatype mpiType();
+template <>
+MPI_Datatype mpiType<float>() { return MPI_FLOAT; }
+template <>
+MPI_Datatype mpiType<uint8_t>() { return MPI_BYTE; }
+
+// MPI counts are ints: a buffer of more elements cannot travel in one message.
+int countOf(size_t elements) {
+  if (elements > size_t(std::numeric_limits<int>::max()))
+    throw Error(ExitCode::Internal, "MPI: a buffer of " + std::to_string(elements) +
+                                        " elements is too large for one message (at most 2^31 - 1)");
+  return int(elements);
+}
+
+template <class T>
+std::vector<T> gathervOf(const std::vector<T>& mine) {
+  Timed timed(mine.size() * sizeof(T));
   const int n = size(), me = rank();
-  int count = int(mine.size());
+  int count = countOf(mine.size());
   std::vector<int> counts(size_t(me == 0 ? n : 0)), displs;
   check(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Gather");
-  std::vector<float> all;
+  std::vector<T> all;
   if (me == 0) {
     displs.assign(size_t(n), 0);
-    long total = 0;
+    size_t total = 0;
     for (int r = 0; r < n; ++r) {
-      displs[size_t(r)] = int(total);
-      total += counts[size_t(r)];
+      displs[size_t(r)] = countOf(total);
+      total += size_t(counts[size_t(r)]);
     }
+    countOf(total);
     // Its pages faulted in by the rank's threads first, not one by one inside MPI's copy (12 MB
-    // for a 1280x800 image: about 3000 faults, several ms, on the render's critical path).
-    resizePrefaulted(all, size_t(total), 0);
+    // for a 1280x800 image of floats: about 3000 faults, several ms, on the render's critical path).
+    resizePrefaulted(all, total, 0);
   }
-  check(MPI_Gatherv(mine.data(), count, MPI_FLOAT, all.data(), counts.data(), displs.data(), MPI_FLOAT, 0,
+  check(MPI_Gatherv(mine.data(), count, mpiType<T>(), all.data(), counts.data(), displs.data(), mpiType<T>(), 0,
                     MPI_COMM_WORLD),
         "MPI_Gatherv");
   return all;
 }
 
-namespace {
-
-void sendTo(int to, const std::vector<float>& data) {
-  Timed timed(data.size() * sizeof(float));
-  int count = int(data.size());
+template <class T>
+void sendTo(int to, const std::vector<T>& data) {
+  Timed timed(data.size() * sizeof(T));
+  int count = countOf(data.size());
   check(MPI_Send(&count, 1, MPI_INT, to, kTagData, MPI_COMM_WORLD), "MPI_Send");
-  check(MPI_Send(data.data(), count, MPI_FLOAT, to, kTagData, MPI_COMM_WORLD), "MPI_Send");
+  check(MPI_Send(data.data(), count, mpiType<T>(), to, kTagData, MPI_COMM_WORLD), "MPI_Send");
 }
 
 // Receives what sendTo sent, appended to `held` (no copy in between).
-void receiveAppend(int from, std::vector<float>& held) {
+template <class T>
+void receiveAppend(int from, std::vector<T>& held) {
   Timed timed;
   int count = 0;
   check(MPI_Recv(&count, 1, MPI_INT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
   const size_t at = held.size();
+  countOf(at + size_t(count));
   held.resize(at + size_t(count));
-  check(MPI_Recv(held.data() + at, count, MPI_FLOAT, from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+  check(MPI_Recv(held.data() + at, count, mpiType<T>(), from, kTagData, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+        "MPI_Recv");
 }
 
-}  // namespace
-
-std::vector<float> gatherRecursiveDoubling(std::vector<float> held) {
+template <class T>
+std::vector<T> recursiveDoublingOf(std::vector<T> held) {
   const int me = rank(), n = size();
   for (int mask = 1; mask < n; mask <<= 1) {
     if (me & mask) {  // hand everything held to the partner below, and stop
@@ -333,6 +356,15 @@ std::vector<float> gatherRecursiveDoubling(std::vector<float> held) {
     if (me + mask < n) receiveAppend(me + mask, held);
   }
   return held;  // rank 0
+}
+
+}  // namespace
+
+std::vector<float> gatherv(const std::vector<float>& mine) { return gathervOf(mine); }
+std::vector<uint8_t> gatherv(const std::vector<uint8_t>& mine) { return gathervOf(mine); }
+std::vector<float> gatherRecursiveDoubling(std::vector<float> mine) { return recursiveDoublingOf(std::move(mine)); }
+std::vector<uint8_t> gatherRecursiveDoubling(std::vector<uint8_t> mine) {
+  return recursiveDoublingOf(std::move(mine));
 }
 
 std::vector<double> pingPong(size_t bytes, int reps) {

@@ -7,11 +7,14 @@
 #include <mutex>
 #include <optional>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <thread>
 
 #include "core/error.h"
 #include "core/prefault.h"
+#include "image/image_io.h"
 #include "parallel/cluster.h"
 #include "parallel/parallel_for.h"
 #include "render/kernel.h"
@@ -94,27 +97,35 @@ class RankRenderer {
   }
   int threads() const { return threads_; }
 
-  // This rank's share as a self-describing payload: [n, item indices..., then for each
-  // item its rows of RGB, and its rows of work counts when there is a load map].
-  // Written by all the rank's threads, an item each, into pages they fault in themselves: on
-  // the render's critical path, between the last item and the gather.
-  std::vector<float> payload() const {
-    const size_t perPixel = s_.loadMap ? 4 : 3;
-    std::vector<size_t> at(mine_.size() + 1, 1 + mine_.size());  // where each item's rows go
+  // This rank's share as a self-describing payload of bytes: [n, the n item indices (uint32
+  // each), then for each item its rows of RGB (8-bit sRGB, or float), and its rows of work
+  // counts (float) when there is a load map]. Written by all the rank's threads, an item
+  // each, into pages they fault in themselves: on the render's critical path, between the
+  // last item and the gather. An 8-bit share is encoded here, on every rank's threads, and
+  // is a quarter of the float one's bytes (docs/parallel.md, "What gathering costs").
+  std::vector<uint8_t> payload(bool eightBit) const {
+    const size_t rgbBytes = eightBit ? 3 : 3 * sizeof(float);
+    const size_t perPixel = rgbBytes + (s_.loadMap ? sizeof(float) : 0);
+    std::vector<size_t> at(mine_.size() + 1, sizeof(uint32_t) * (1 + mine_.size()));  // where each item's rows go
     for (size_t k = 0; k < mine_.size(); ++k)
       at[k + 1] = at[k] + size_t(plan_.items[size_t(mine_[k])].pixels()) * perPixel;
-    std::vector<float> out;
+    std::vector<uint8_t> out;
     resizePrefaulted(out, at.back(), threads_);
-    out[0] = float(mine_.size());
-    for (size_t k = 0; k < mine_.size(); ++k) out[1 + k] = float(mine_[k]);  // exact: fewer than 2^24 items
+    std::vector<uint32_t> head{uint32_t(mine_.size())};
+    head.insert(head.end(), mine_.begin(), mine_.end());
+    std::memcpy(out.data(), head.data(), head.size() * sizeof(uint32_t));
     parallelIndices(mine_.size(), threads_, [&](size_t k) {
       const WorkItem& it = plan_.items[size_t(mine_[k])];
       const size_t w = size_t(it.x1 - it.x0);
-      float* to = out.data() + at[k];
-      for (int y = it.y0; y < it.y1; ++y, to += 3 * w) std::copy_n(image_.row(y) + size_t(it.x0) * 3, 3 * w, to);
+      uint8_t* to = out.data() + at[k];
+      for (int y = it.y0; y < it.y1; ++y, to += w * rgbBytes) {
+        const float* from = image_.row(y) + size_t(it.x0) * 3;
+        if (eightBit) encodeSrgb8(from, 3 * w, to);
+        else std::memcpy(to, from, w * rgbBytes);
+      }
       if (s_.loadMap)
-        for (int y = it.y0; y < it.y1; ++y, to += w)
-          std::copy_n(load_.data() + size_t(y) * size_t(s_.width) + size_t(it.x0), w, to);
+        for (int y = it.y0; y < it.y1; ++y, to += w * sizeof(float))
+          std::memcpy(to, load_.data() + size_t(y) * size_t(s_.width) + size_t(it.x0), w * sizeof(float));
     });
     return out;
   }
@@ -154,34 +165,46 @@ class RankRenderer {
   long pixels_ = 0;
 };
 
-// Unpacks concatenated payloads (RankRenderer::payload) into the image and load map: first
-// where each item lies in them, then the items copied on up to `threads` threads (the image's
-// pages are first touched there).
-void unpack(const std::vector<float>& all, const WorkPlan& plan, RenderResult& r, int width, int threads) {
+// Unpacks concatenated payloads (RankRenderer::payload) into the render area's image (8-bit
+// into `rgb8`, else into r.image) and load map: first where each item lies in them, then the
+// items copied on up to `threads` threads (the image's pages are first touched there).
+void unpack(const std::vector<uint8_t>& all, const WorkPlan& plan, const WorkItem& area, bool eightBit,
+            RenderResult& r, std::vector<uint8_t>& rgb8, int threads) {
   struct Placed {
     size_t item, at;
   };
+  const auto word = [&](size_t at) {
+    uint32_t v;
+    std::memcpy(&v, all.data() + at, sizeof v);
+    return size_t(v);
+  };
+  const size_t rgbBytes = eightBit ? 3 : 3 * sizeof(float);
+  const size_t perPixel = rgbBytes + (r.load.empty() ? 0 : sizeof(float));
   std::vector<Placed> placed;
-  const size_t perPixel = r.load.empty() ? 3 : 4;
   size_t at = 0;
   while (at < all.size()) {
-    const size_t n = size_t(all[at++]);
-    const size_t firstIndex = at;
-    at += n;
+    const size_t n = word(at);
+    const size_t firstIndex = at + sizeof(uint32_t);
+    at = firstIndex + n * sizeof(uint32_t);
     for (size_t k = 0; k < n; ++k) {
-      const size_t item = size_t(all[firstIndex + k]);
+      const size_t item = word(firstIndex + k * sizeof(uint32_t));
       placed.push_back({item, at});
       at += size_t(plan.items[item].pixels()) * perPixel;
     }
   }
+  const size_t areaWidth = size_t(area.x1 - area.x0);
   parallelIndices(placed.size(), threads, [&](size_t k) {
     const WorkItem& it = plan.items[placed[k].item];
-    const size_t w = size_t(it.x1 - it.x0);
-    const float* from = all.data() + placed[k].at;
-    for (int y = it.y0; y < it.y1; ++y, from += 3 * w) std::copy_n(from, 3 * w, r.image.row(y) + size_t(it.x0) * 3);
+    const size_t w = size_t(it.x1 - it.x0), x = size_t(it.x0 - area.x0);
+    const uint8_t* from = all.data() + placed[k].at;
+    for (int y = it.y0; y < it.y1; ++y, from += w * rgbBytes) {
+      const int row = y - area.y0;
+      if (eightBit) std::memcpy(rgb8.data() + (size_t(row) * areaWidth + x) * 3, from, w * 3);
+      else std::memcpy(r.image.row(row) + x * 3, from, w * rgbBytes);
+    }
     if (!r.load.empty())
-      for (int y = it.y0; y < it.y1; ++y, from += w)
-        std::copy_n(from, w, r.load.data() + size_t(y) * size_t(width) + size_t(it.x0));
+      for (int y = it.y0; y < it.y1; ++y, from += w * sizeof(float))
+        std::memcpy(r.load.data() + size_t(y - area.y0) * areaWidth + x, from, w * sizeof(float));
   });
 }
 
@@ -343,8 +366,8 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   }
   const double idle = cluster::barrier();  // waiting here is load imbalance, not communication
 
-  const std::vector<float> share = local.payload();
-  const std::vector<float> all =
+  const std::vector<uint8_t> share = local.payload(d.eightBit);
+  const std::vector<uint8_t> all =
       d.gather == GatherMethod::Gatherv ? cluster::gatherv(share) : cluster::gatherRecursiveDoubling(share);
 
   RankStats mineStats;
@@ -369,10 +392,14 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   DistributedResult out;
   if (me != 0) return out;
   RenderResult& r = out.render;
-  r.image = Image::unfilled(s.width, s.height);  // the payloads cover every pixel
-  if (s.loadMap) r.load.assign(size_t(s.width) * s.height, 0.0f);
-  unpack(all, plan, r, s.width, local.threads());
-  cropToArea(r, s);
+  const WorkItem whole = renderArea(s);
+  out.width = whole.x1 - whole.x0;
+  out.height = whole.y1 - whole.y0;
+  // The payloads cover every pixel of the area.
+  if (d.eightBit) resizePrefaulted(out.rgb8, size_t(out.width) * size_t(out.height) * 3, local.threads());
+  else r.image = Image::unfilled(out.width, out.height);
+  if (s.loadMap) r.load.assign(size_t(out.width) * size_t(out.height), 0.0f);
+  unpack(all, plan, whole, d.eightBit, r, out.rgb8, local.threads());
   r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);
   const size_t k = packed.size();
   size_t at = 0;  // into threadFigures

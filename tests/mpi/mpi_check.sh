@@ -22,6 +22,9 @@
 #       a rank stopped with SIGSTOP ends the job (exit 75, one message) once --mpi-timeout
 #       (2 s here) has passed, instead of hanging; `remote`: 3 ranks, each as if on a node of
 #       its own (PVRT_WATCHDOG_HEARTBEATS_ONLY=1), so that only the heartbeats can see it
+#   mpi_check.sh formats BUILD SCENE NP GATHER
+#       an 8-bit output (PNG, TGA) travels as sRGB bytes, an EXR as floats: each is the
+#       serial render's exactly, and the 8-bit gather sends at most a third of the float one's bytes
 #   mpi_check.sh defaults BUILD SCENE NP
 #       without --threads or OMP_NUM_THREADS, NP ranks on this node divide its CPUs: each
 #       has max(1, CPUs / NP) threads, never a thread per CPU each
@@ -148,6 +151,23 @@ loadmap)
   "$pvrt" compare "$work/serial.png" "$work/mpi.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
   "$pvrt" compare "$work/serial-map.png" "$work/mpi-map.png" --max-levels 0 --max-fraction-over-1 0 || exit 1
   idiff -fail 0 -warn 0 "$work/serial-map.exr" "$work/mpi-map.exr"
+  ;;
+formats)
+  np=$1 gather=$2
+  sent() {  # the KiB every rank sent, summed, from --stats
+    awk '/Rank +items/{on=1; next} on && /^  [0-9]/{s+=$NF} END{print s+0}' "$1"
+  }
+  for ext in png tga exr; do
+    "$pvrt" render "$scene" -o "$work/serial.$ext" --backend serial "${size[@]}" || exit 1
+    "${mpirun[@]}" -np "$np" "$pvrt" render "$scene" -o "$work/mpi.$ext" --backend mpi --schedule cyclic \
+      --gather "$gather" --threads 1 "${size[@]}" --stats >"$work/stats.$ext" || exit 1
+  done
+  cmp "$work/serial.png" "$work/mpi.png" || exit 1
+  cmp "$work/serial.tga" "$work/mpi.tga" || exit 1
+  idiff -fail 0 -warn 0 "$work/serial.exr" "$work/mpi.exr" || exit 1
+  float=$(sent "$work/stats.exr") bytes=$(sent "$work/stats.png")
+  echo "sent: $float KiB as floats, $bytes KiB as sRGB bytes"
+  awk -v f="$float" -v b="$bytes" 'BEGIN{exit !(f > 0 && b > 0 && 3 * b <= f)}' || { echo "the 8-bit gather is not smaller"; exit 1; }
   ;;
 defaults)
   np=$1
