@@ -174,6 +174,7 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
              mib(peakResidentBytes()), mib(peaks.load), mib(peaks.build), ranks.empty() ? "" : ", rank 0");
   if (!ranks.empty()) {
     fmt::print("  Gather                {}\n", o.gatherName);
+    fmt::print("  MPI transports        {}\n", cluster::transports());
     fmt::print("  {:<6}{:>7}{:>10}{:>16}{:>11}{:>10}{:>10}{:>10}{:>12}\n", "Rank", "items", "pixels", "work",
                "compute s", "comm s", "idle s", "wall s", "sent KiB");
     double maxC = 0, sumC = 0, maxW = 0, sumW = 0;

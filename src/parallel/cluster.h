@@ -21,6 +21,9 @@ class Session {
   Session& operator=(const Session&) = delete;
 };
 
+// What Session asked of Open MPI's transports, for --stats (cluster_mpi.cpp says why).
+const std::string& transports();
+
 int rank();
 int size();
 std::string processorName();

@@ -25,6 +25,9 @@
 #   mpi_check.sh formats BUILD SCENE NP GATHER
 #       an 8-bit output (PNG, TGA) travels as sRGB bytes, an EXR as floats: each is the
 #       serial render's exactly, and the 8-bit gather sends at most a third of the float one's bytes
+#   mpi_check.sh transports BUILD SCENE
+#       ranks all on this node ask Open MPI for shared memory (ob1 over vader), unless the user
+#       chose a transport (--mca) or set PVRT_MPI_SHARED_MEMORY=0; the image is the same each way
 #   mpi_check.sh defaults BUILD SCENE NP
 #       without --threads or OMP_NUM_THREADS, NP ranks on this node divide its CPUs: each
 #       has max(1, CPUs / NP) threads, never a thread per CPU each
@@ -168,6 +171,21 @@ formats)
   float=$(sent "$work/stats.exr") bytes=$(sent "$work/stats.png")
   echo "sent: $float KiB as floats, $bytes KiB as sRGB bytes"
   awk -v f="$float" -v b="$bytes" 'BEGIN{exit !(f > 0 && b > 0 && 3 * b <= f)}' || { echo "the 8-bit gather is not smaller"; exit 1; }
+  ;;
+transports)
+  "$pvrt" render "$scene" -o "$work/serial.png" --backend serial "${size[@]}" || exit 1
+  check() {  # expected-transports-line, then mpirun's own arguments
+    local expect=$1
+    shift
+    "${mpirun[@]}" "$@" -np 2 "$pvrt" render "$scene" -o "$work/mpi.png" --backend mpi --threads 1 "${size[@]}" \
+      --stats >"$work/stats" || exit 1
+    grep 'MPI transports' "$work/stats"
+    grep -qF "MPI transports        $expect" "$work/stats" || { echo "expected: $expect"; exit 1; }
+    cmp "$work/serial.png" "$work/mpi.png" || exit 1
+  }
+  check "one node: pml ob1, btl self,vader, osc ^ucx"
+  check "one node: pml ob1, btl self,tcp, osc ^ucx" --mca btl self,tcp
+  PVRT_MPI_SHARED_MEMORY=0 check "Open MPI's own choice" -x PVRT_MPI_SHARED_MEMORY
   ;;
 defaults)
   np=$1
