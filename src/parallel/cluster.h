@@ -67,9 +67,10 @@ double barrier();
 
 // Collective: rank 0 receives every rank's buffer, concatenated in rank order
 // (MPI_Gatherv: any number of ranks, uneven sizes). Empty on other ranks. Of floats, or of
-// bytes (a render's payload: sRGB bytes and floats packed as it needs them).
+// 32-bit words (a render's payload: sRGB bytes and floats packed as it needs them; words
+// rather than bytes, so that the largest image's payload still counts under 2^31).
 std::vector<float> gatherv(const std::vector<float>& mine);
-std::vector<uint8_t> gatherv(const std::vector<uint8_t>& mine);
+std::vector<uint32_t> gatherv(const std::vector<uint32_t>& mine);
 // Collective: rank 0 receives `mine` from every rank (all of the same length).
 std::vector<double> gatherFixed(const std::vector<double>& mine);
 // Collective, the same result as gatherv() (but the order of the buffers) by recursive
@@ -78,7 +79,7 @@ std::vector<double> gatherFixed(const std::vector<double>& mine);
 // holds everything. Any number of ranks; no rank ever holds more than rank 0 finally does.
 // Empty on other ranks than 0.
 std::vector<float> gatherRecursiveDoubling(std::vector<float> mine);
-std::vector<uint8_t> gatherRecursiveDoubling(std::vector<uint8_t> mine);
+std::vector<uint32_t> gatherRecursiveDoubling(std::vector<uint32_t> mine);
 // Ranks 0 and 1 send `bytes` back and forth `reps` times; the round trips' seconds on rank
 // 0 (empty on the other ranks). Collective: every rank calls it, ranks above 1 wait.
 std::vector<double> pingPong(size_t bytes, int reps);

@@ -317,7 +317,7 @@ MPI_Datatype mpiType();
 template <>
 MPI_Datatype mpiType<float>() { return MPI_FLOAT; }
 template <>
-MPI_Datatype mpiType<uint8_t>() { return MPI_BYTE; }
+MPI_Datatype mpiType<uint32_t>() { return MPI_UINT32_T; }
 
 // MPI counts are ints: a buffer of more elements cannot travel in one message.
 int countOf(size_t elements) {
@@ -390,9 +390,9 @@ std::vector<T> recursiveDoublingOf(std::vector<T> held) {
 }  // namespace
 
 std::vector<float> gatherv(const std::vector<float>& mine) { return gathervOf(mine); }
-std::vector<uint8_t> gatherv(const std::vector<uint8_t>& mine) { return gathervOf(mine); }
+std::vector<uint32_t> gatherv(const std::vector<uint32_t>& mine) { return gathervOf(mine); }
 std::vector<float> gatherRecursiveDoubling(std::vector<float> mine) { return recursiveDoublingOf(std::move(mine)); }
-std::vector<uint8_t> gatherRecursiveDoubling(std::vector<uint8_t> mine) {
+std::vector<uint32_t> gatherRecursiveDoubling(std::vector<uint32_t> mine) {
   return recursiveDoublingOf(std::move(mine));
 }
 

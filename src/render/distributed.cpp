@@ -27,6 +27,16 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 
+// How a pixel travels in a rank's payload: its RGB as 8-bit sRGB or as floats, and its work
+// count (a float) with a load map.
+struct PayloadLayout {
+  bool eightBit = false, loadMap = false;
+  size_t rgbBytes() const { return eightBit ? 3 : 3 * sizeof(float); }
+  size_t pixelBytes() const { return rgbBytes() + (loadMap ? sizeof(float) : 0); }
+};
+// The 32-bit words that hold `bytes` bytes.
+size_t wordsFor(size_t bytes) { return (bytes + sizeof(uint32_t) - 1) / sizeof(uint32_t); }
+
 // Renders some of the plan's items on this rank, with its OpenMP threads over rows.
 class RankRenderer {
  public:
@@ -97,31 +107,30 @@ class RankRenderer {
   }
   int threads() const { return threads_; }
 
-  // This rank's share as a self-describing payload of bytes: [n, the n item indices (uint32
+  // This rank's share as a self-describing payload: [n, the n item indices (a 32-bit word
   // each), then for each item its rows of RGB (8-bit sRGB, or float), and its rows of work
-  // counts (float) when there is a load map]. Written by all the rank's threads, an item
-  // each, into pages they fault in themselves: on the render's critical path, between the
-  // last item and the gather. An 8-bit share is encoded here, on every rank's threads, and
-  // is a quarter of the float one's bytes (docs/parallel.md, "What gathering costs").
-  std::vector<uint8_t> payload(bool eightBit) const {
-    const size_t rgbBytes = eightBit ? 3 : 3 * sizeof(float);
-    const size_t perPixel = rgbBytes + (s_.loadMap ? sizeof(float) : 0);
-    std::vector<size_t> at(mine_.size() + 1, sizeof(uint32_t) * (1 + mine_.size()));  // where each item's rows go
+  // counts (float) when there is a load map, padded to whole words]. Written by all the rank's
+  // threads, an item each, into pages they fault in themselves: on the render's critical
+  // path, between the last item and the gather. An 8-bit share is encoded here, on every
+  // rank's threads, and is a quarter of the float one's bytes (docs/parallel.md).
+  std::vector<uint32_t> payload(bool eightBit) const {
+    const PayloadLayout layout{eightBit, s_.loadMap};
+    std::vector<size_t> at(mine_.size() + 1, sizeof(uint32_t) * (1 + mine_.size()));  // bytes: each item's rows
     for (size_t k = 0; k < mine_.size(); ++k)
-      at[k + 1] = at[k] + size_t(plan_.items[size_t(mine_[k])].pixels()) * perPixel;
-    std::vector<uint8_t> out;
-    resizePrefaulted(out, at.back(), threads_);
-    std::vector<uint32_t> head{uint32_t(mine_.size())};
-    head.insert(head.end(), mine_.begin(), mine_.end());
-    std::memcpy(out.data(), head.data(), head.size() * sizeof(uint32_t));
+      at[k + 1] = at[k] + size_t(plan_.items[size_t(mine_[k])].pixels()) * layout.pixelBytes();
+    std::vector<uint32_t> out;
+    resizePrefaulted(out, wordsFor(at.back()), threads_);
+    out[0] = uint32_t(mine_.size());
+    std::copy(mine_.begin(), mine_.end(), out.begin() + 1);
+    uint8_t* const bytes = reinterpret_cast<uint8_t*>(out.data());
     parallelIndices(mine_.size(), threads_, [&](size_t k) {
       const WorkItem& it = plan_.items[size_t(mine_[k])];
       const size_t w = size_t(it.x1 - it.x0);
-      uint8_t* to = out.data() + at[k];
-      for (int y = it.y0; y < it.y1; ++y, to += w * rgbBytes) {
+      uint8_t* to = bytes + at[k];
+      for (int y = it.y0; y < it.y1; ++y, to += w * layout.rgbBytes()) {
         const float* from = image_.row(y) + size_t(it.x0) * 3;
         if (eightBit) encodeSrgb8(from, 3 * w, to);
-        else std::memcpy(to, from, w * rgbBytes);
+        else std::memcpy(to, from, w * layout.rgbBytes());
       }
       if (s_.loadMap)
         for (int y = it.y0; y < it.y1; ++y, to += w * sizeof(float))
@@ -168,39 +177,34 @@ class RankRenderer {
 // Unpacks concatenated payloads (RankRenderer::payload) into the render area's image (8-bit
 // into `rgb8`, else into r.image) and load map: first where each item lies in them, then the
 // items copied on up to `threads` threads (the image's pages are first touched there).
-void unpack(const std::vector<uint8_t>& all, const WorkPlan& plan, const WorkItem& area, bool eightBit,
+void unpack(const std::vector<uint32_t>& all, const WorkPlan& plan, const WorkItem& area, bool eightBit,
             RenderResult& r, std::vector<uint8_t>& rgb8, int threads) {
   struct Placed {
-    size_t item, at;
+    size_t item, at;  // at: in bytes
   };
-  const auto word = [&](size_t at) {
-    uint32_t v;
-    std::memcpy(&v, all.data() + at, sizeof v);
-    return size_t(v);
-  };
-  const size_t rgbBytes = eightBit ? 3 : 3 * sizeof(float);
-  const size_t perPixel = rgbBytes + (r.load.empty() ? 0 : sizeof(float));
+  const PayloadLayout layout{eightBit, !r.load.empty()};
   std::vector<Placed> placed;
-  size_t at = 0;
-  while (at < all.size()) {
-    const size_t n = word(at);
-    const size_t firstIndex = at + sizeof(uint32_t);
-    at = firstIndex + n * sizeof(uint32_t);
+  size_t word = 0;  // where the next rank's payload starts
+  while (word < all.size()) {
+    const size_t n = all[word];
+    size_t at = (word + 1 + n) * sizeof(uint32_t);
     for (size_t k = 0; k < n; ++k) {
-      const size_t item = word(firstIndex + k * sizeof(uint32_t));
+      const size_t item = all[word + 1 + k];
       placed.push_back({item, at});
-      at += size_t(plan.items[item].pixels()) * perPixel;
+      at += size_t(plan.items[item].pixels()) * layout.pixelBytes();
     }
+    word = wordsFor(at);
   }
+  const uint8_t* const bytes = reinterpret_cast<const uint8_t*>(all.data());
   const size_t areaWidth = size_t(area.x1 - area.x0);
   parallelIndices(placed.size(), threads, [&](size_t k) {
     const WorkItem& it = plan.items[placed[k].item];
     const size_t w = size_t(it.x1 - it.x0), x = size_t(it.x0 - area.x0);
-    const uint8_t* from = all.data() + placed[k].at;
-    for (int y = it.y0; y < it.y1; ++y, from += w * rgbBytes) {
-      const int row = y - area.y0;
-      if (eightBit) std::memcpy(rgb8.data() + (size_t(row) * areaWidth + x) * 3, from, w * 3);
-      else std::memcpy(r.image.row(row) + x * 3, from, w * rgbBytes);
+    const uint8_t* from = bytes + placed[k].at;
+    for (int y = it.y0; y < it.y1; ++y, from += w * layout.rgbBytes()) {
+      const size_t row = size_t(y - area.y0);
+      if (eightBit) std::memcpy(rgb8.data() + (row * areaWidth + x) * 3, from, w * 3);
+      else std::memcpy(r.image.row(int(row)) + x * 3, from, w * layout.rgbBytes());
     }
     if (!r.load.empty())
       for (int y = it.y0; y < it.y1; ++y, from += w * sizeof(float))
@@ -366,8 +370,8 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   }
   const double idle = cluster::barrier();  // waiting here is load imbalance, not communication
 
-  const std::vector<uint8_t> share = local.payload(d.eightBit);
-  const std::vector<uint8_t> all =
+  const std::vector<uint32_t> share = local.payload(d.eightBit);
+  const std::vector<uint32_t> all =
       d.gather == GatherMethod::Gatherv ? cluster::gatherv(share) : cluster::gatherRecursiveDoubling(share);
 
   RankStats mineStats;
@@ -392,14 +396,14 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   DistributedResult out;
   if (me != 0) return out;
   RenderResult& r = out.render;
-  const WorkItem whole = renderArea(s);
-  out.width = whole.x1 - whole.x0;
-  out.height = whole.y1 - whole.y0;
+  const WorkItem areaRect = renderArea(s);
+  out.width = areaRect.x1 - areaRect.x0;
+  out.height = areaRect.y1 - areaRect.y0;
   // The payloads cover every pixel of the area.
   if (d.eightBit) resizePrefaulted(out.rgb8, size_t(out.width) * size_t(out.height) * 3, local.threads());
   else r.image = Image::unfilled(out.width, out.height);
   if (s.loadMap) r.load.assign(size_t(out.width) * size_t(out.height), 0.0f);
-  unpack(all, plan, whole, d.eightBit, r, out.rgb8, local.threads());
+  unpack(all, plan, areaRect, d.eightBit, r, out.rgb8, local.threads());
   r.effects = scene.effects | (PixelSampler(s.sampler).count() > 1 ? kSupersampling : 0u);
   const size_t k = packed.size();
   size_t at = 0;  // into threadFigures
