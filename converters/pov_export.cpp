@@ -80,8 +80,9 @@ class Writer {
     if (l.area) {
       const AreaLightDesc& a = *l.area;
       out_ += "  area_light " + vec(a.axis1) + ", " + vec(a.axis2) + ", " + std::to_string(a.size1) + ", " +
-              std::to_string(a.size2) + " adaptive " + std::to_string(a.adaptive) + (a.circular ? " circular" : "") +
-              (a.orient ? " orient" : "") + "\n";
+              std::to_string(a.size2) + " adaptive " + std::to_string(a.adaptive) +
+              // POV-Ray makes an oriented light circular itself, with a warning; written out, no warning.
+              (a.circular || a.orient ? " circular" : "") + (a.orient ? " orient" : "") + "\n";
     }
     if (l.fadeDistance != 0 || l.fadePower != 0)
       out_ += "  fade_distance " + num(l.fadeDistance) + " fade_power " + num(l.fadePower) + "\n";

@@ -100,8 +100,10 @@ struct StagePeaks {
 void warnNonFinite(const RenderStats& t) {
   if (t.nonFiniteSamples || t.nonFinitePixels)
     std::fprintf(stderr,
-                 "pvrt: warning: %llu samples were NaN or infinite (written as black) and %llu pixels were "
-                 "affected or beyond the range of a float; please report the scene\n",
+                 "pvrt: warning: %llu samples were NaN or infinite and %llu pixels were affected or beyond "
+                 "the range of a float (a NaN channel is written as 0, as POV-Ray writes it); a negative "
+                 "colour raised to a reflection exponent gives NaN in POV-Ray too, otherwise please report "
+                 "the scene\n",
                  (unsigned long long)t.nonFiniteSamples, (unsigned long long)t.nonFinitePixels);
 }
 

@@ -68,7 +68,8 @@ class AdaptiveSource {
  private:
   static FloatRgb single(const Color& c) { return {float(c.r), float(c.g), float(c.b)}; }
   // rays_[0, n) into colors_: as packets (camera rays share their origin), or one by one
-  // when too few; a sample that is not finite counts as black (render/pixel_value.h).
+  // when too few; a sample that is not finite is counted (render/pixel_value.h) and kept, as
+  // POV-Ray keeps it.
   void traceRays(int n) {
     stats_.primaryRays += uint64_t(n);
     if (size_t(n) < kMinPacket) {

@@ -21,7 +21,10 @@ Light buildLight(const LightDesc& d) {
   // A light's colour is a float colour in POV-Ray (LightSource::colour), as pigments are.
   l.color = single(d.color);
   l.shadowless = d.shadowless;
-  if (d.spot) {
+  // In POV-Ray `shadowless` and `spotlight` both set the light's type (Parse_Light_Source:
+  // FILL_LIGHT_SOURCE, SPOT_SOURCE) and the exporter writes `shadowless` last, so a shadowless
+  // spotlight is a shadowless point light there: Attenuate_Light shapes only SPOT_SOURCE lights.
+  if (d.spot && !d.shadowless) {
     l.spot = true;
     l.spotAxis = unitDirection(d.spot->pointAt - d.location);
     l.cosRadius = cosDegrees(d.spot->radius);

@@ -1,5 +1,6 @@
 // How a pixel's value is formed from its rays' colours, the same way on every path:
-// non-finite samples as black, POV-Ray's float sum, overflow clamped to a float.
+// POV-Ray's float sum, a NaN channel written as 0 and overflow clamped to a float, as
+// POV-Ray writes them.
 #pragma once
 
 #include <cmath>
@@ -12,17 +13,19 @@
 
 namespace pvrt {
 
-// The NaN census. A camera sample whose colour is not finite (NaN or infinite: a bug, or
-// arithmetic past the range of a double) is counted and counts as black: one bad ray must
-// neither poison its pixel nor reach the image, and black is what no light looks like. A
-// pixel whose value overflows the image's float is written as +-FLT_MAX (the brightest
-// value the image can hold) and counted too. Either way `pvrt render` warns.
-inline bool finiteSamples(Color* colors, size_t count, RenderStats& stats) {
+// The NaN census. A camera sample whose colour is not finite (NaN or infinite: arithmetic
+// past the range of a float, or a negative colour raised to a fractional reflection
+// exponent, which POV-Ray computes too) is counted, and `pvrt render` warns. It is summed
+// as POV-Ray sums it, channel by channel in float (PixelSum), and its pixel is written as
+// POV-Ray writes it: a channel whose sum is NaN as 0 (IntEncode's float-to-integer
+// conversion of a NaN gives 0: a pixel of green glass whose red is NaN stays green), one
+// beyond the image's float as +-FLT_MAX (white where positive). So no NaN or infinity
+// reaches the image, and the pixel's other channels keep the sample's finite values.
+inline bool finiteSamples(const Color* colors, size_t count, RenderStats& stats) {
   bool all = true;
   for (size_t k = 0; k < count; ++k) {
-    Color& c = colors[k];
+    const Color& c = colors[k];
     if (std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b)) continue;
-    c = Color();
     ++stats.nonFiniteSamples;
     all = false;
   }
@@ -30,11 +33,15 @@ inline bool finiteSamples(Color* colors, size_t count, RenderStats& stats) {
 }
 inline void setPixel(Image& image, int x, int y, Color c, bool finite, RenderStats& stats) {
   constexpr double kMax = std::numeric_limits<float>::max();
-  for (double* v : {&c.r, &c.g, &c.b})
-    if (!(std::fabs(*v) <= kMax)) {
+  for (double* v : {&c.r, &c.g, &c.b}) {
+    if (std::isnan(*v)) {
+      *v = 0.0;
+      finite = false;
+    } else if (!(std::fabs(*v) <= kMax)) {
       *v = std::copysign(kMax, *v);
       finite = false;
     }
+  }
   if (!finite) ++stats.nonFinitePixels;
   image.set(x, y, c);
 }

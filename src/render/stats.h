@@ -14,8 +14,9 @@ struct RenderStats {
   uint64_t transmittedRays = 0;  // transmitted rays that go straight on (ior == 1)
   uint64_t intersectionTests = 0;
   uint64_t shadingOps = 0;       // surface hits shaded (one per hit, lights included)
-  // The NaN census: camera samples whose colour was not finite (written as black) and
-  // pixels that had one, or whose value overflowed a float (written as +-FLT_MAX).
+  // The NaN census: camera samples whose colour was not finite and pixels that had one
+  // (a NaN channel written as 0, as POV-Ray writes it), or whose value overflowed a float
+  // (written as +-FLT_MAX).
   uint64_t nonFiniteSamples = 0;
   uint64_t nonFinitePixels = 0;
 

@@ -10,6 +10,12 @@ endif()
 pvrt_add_golden_tests(NAME golden SCENES ${PROJECT_SOURCE_DIR}/scenes REFERENCES ${PROJECT_SOURCE_DIR}/reference
                       OUT ${PROJECT_BINARY_DIR}/golden-out BACKENDS ${PVRT_GOLDEN_BACKENDS} MPIRUN ${PVRT_MPIRUN}
                       POVRAY_RECHECK paper1 shapes lights)
+# Scenes written from docs/scene-format.md alone, as an outside user would (scenes/outside,
+# reference/outside). Serial only: the corpus above already checks that every backend
+# gives the same image, and these are here for their agreement with POV-Ray.
+pvrt_add_golden_tests(NAME golden-outside SCENES ${PROJECT_SOURCE_DIR}/scenes/outside
+                      REFERENCES ${PROJECT_SOURCE_DIR}/reference/outside
+                      OUT ${PROJECT_BINARY_DIR}/golden-outside-out BACKENDS serial)
 
 # `pvrt golden` itself (label golden-tool): a suite of three scenes made with POV-Ray, then
 # one case each on a copy of it (tests/golden/golden_tool.sh says what each checks).

@@ -155,7 +155,7 @@ CaseResult runCase(const std::string& name, const std::string& sweepArg, const s
   Outcome out;
   out.add("unit", scene.tol.unit);
   out.add("nonfinite", double(countNonFinite(r.image)), countNonFinite(r.image) == 0);
-  // The renderer's own census: a NaN sample is written as black, so the image alone
+  // The renderer's own census: a NaN channel is written as 0, so the image alone
   // cannot show one.
   out.add("nonfinite_samples", double(r.totals.nonFiniteSamples), r.totals.nonFiniteSamples == 0);
   out.add("nonfinite_pixels", double(r.totals.nonFinitePixels), r.totals.nonFinitePixels == 0);

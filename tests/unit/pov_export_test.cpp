@@ -79,6 +79,17 @@ TEST(PovExport, LightsWithEveryModifier) {
       << sdl;
 }
 
+// POV-Ray's parser makes every oriented area light circular and warns ("Orient can only be
+// used with circular area lights"); the export says `circular` itself, so POV-Ray reads it
+// without a warning and to the same light.
+TEST(PovExport, AnOrientedAreaLightIsWrittenCircular) {
+  const std::string sdl = exportXml(R"(<scene>
+    <light_source location="0 8 0">
+      <area_light axis1="2 0 0" axis2="0 2 0" size1="3" size2="3" orient="true"/>
+    </light_source></scene>)");
+  EXPECT_NE(sdl.find("  area_light <2, 0, 0>, <0, 2, 0>, 3, 3 adaptive 100 circular orient\n"), std::string::npos) << sdl;
+}
+
 TEST(PovExport, NamedMaterialsAreDeclaredOnceAndReferenced) {
   const std::string sdl = exportXml(R"(<scene>
     <material name="glass"><pigment color="1 1 1" filter="0.9"/><interior ior="1.5"/></material>
