@@ -335,7 +335,9 @@ TEST(LightBuffer, ListsAreSortedAndHoldEveryPrimitive) {
       found |= cell[e].primitive == i;
       if (e > 0) {
         ASSERT_LE(cell[e - 1].near, cell[e].near);
-        if (cell[e - 1].near == cell[e].near) ASSERT_LT(cell[e - 1].primitive, cell[e].primitive);  // ties by index
+        if (cell[e - 1].near == cell[e].near) {
+          ASSERT_LT(cell[e - 1].primitive, cell[e].primitive);  // ties by index
+        }
       }
     }
     for (uint32_t j : buffer.everywhere()) found |= j == i;
