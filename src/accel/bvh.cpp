@@ -467,17 +467,25 @@ void Bvh::occlusionPacket(const Vec3& apex, const Ray* segments, const double* t
 }
 
 void Bvh::occludeLive(uint32_t i, const PacketRays& lanes, const double* tMax, double tMin, uint64_t& live,
-                      Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+                      Occlusion* out, uint32_t* blocker, uint64_t& tests, PacketNearest* nearest) const {
   const PrimitiveRecord& p = items_[i];
   if (p.noShadow) return;
   tests += uint64_t(__builtin_popcountll(live));
-  auto record = [&](int k) {
+  const bool unbounded = i >= boundedCount_;
+  auto record = [&](int k, const ShapeHit& h) {
     if (p.opaque) {
       out[k] = Occlusion::Blocked;
       blocker[k] = i;
       live &= ~(uint64_t(1) << k);
-    } else {
-      out[k] = Occlusion::Transparent;
+      return;
+    }
+    out[k] = Occlusion::Transparent;
+    // Nearer, or as near and unbounded where the note is bounded (traverse() visits the
+    // unbounded ones first, and keeps a later hit only when strictly nearer).
+    if (nearest && (h.t < nearest->t[k] ||
+                    (h.t == nearest->t[k] && unbounded && nearest->hit[k].primitive < boundedCount_))) {
+      nearest->t[k] = h.t;
+      nearest->hit[k] = {h, i};
     }
   };
   if (p.kind != PrimitiveRecord::Kind::Other) {
@@ -489,43 +497,50 @@ void Bvh::occludeLive(uint32_t i, const PacketRays& lanes, const double* tMax, d
                           ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)
                           : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, tMax + 4 * g, t)) &
                      group;
-      for (; hit != 0; hit &= hit - 1) record(4 * g + __builtin_ctz(hit));
+      for (; hit != 0; hit &= hit - 1) {
+        const int c = __builtin_ctz(hit);
+        record(4 * g + c, ShapeHit{t[c]});
+      }
     }
     return;
   }
   for (uint64_t m = live; m != 0; m &= m - 1) {
     const int k = __builtin_ctzll(m);
-    if (intersectItem(i, lanes.ray(k), tMin, tMax[k])) record(k);
+    if (const auto h = intersectItem(i, lanes.ray(k), tMin, tMax[k])) record(k, *h);
   }
 }
 
 void Bvh::occludeLiveByUnbounded(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
-                                 uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+                                 uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                                 PacketNearest* nearest) const {
   for (uint32_t i = boundedCount_; i < items_.size() && live != 0; ++i) {
     const PrimitiveRecord& it = items_[i];
     const bool plane = it.kind == PrimitiveRecord::Kind::Plane && !it.noShadow;
     const uint64_t missed = plane ? planeMisses(it.plane, apex, lanes, live) : 0;
     uint64_t tested = live & ~missed;
     if (tested == 0) continue;
-    occludeLive(i, lanes, tMax, tMin, tested, out, blocker, tests);
+    occludeLive(i, lanes, tMax, tMin, tested, out, blocker, tests, nearest);
     live = tested | missed;
   }
 }
 
 void Bvh::occlusionPacket(const Vec3& apex, const PacketRays& lanes, const double* tMax, double tMin,
-                          uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+                          uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                          PacketNearest* nearest) const {
   // From here on `live` holds the segments not yet blocked.
   std::fill(out, out + lanes.count, Occlusion::Clear);
   if (live == 0) return;
+  if (nearest) std::fill(nearest->t, nearest->t + lanes.count, INFINITY);
   // The cone runs from the light back to each segment's start: s in [0, 1].
   Vec3 lo, hi;
   lanes.originRange(apex, lo, hi);
-  occludeLiveInTree(PacketCone(apex, lo, hi, 0.0), 1.0, lanes, tMax, tMin, live, out, blocker, tests);
-  occludeLiveByUnbounded(apex, lanes, tMax, tMin, live, out, blocker, tests);
+  occludeLiveInTree(PacketCone(apex, lo, hi, 0.0), 1.0, lanes, tMax, tMin, live, out, blocker, tests, nearest);
+  occludeLiveByUnbounded(apex, lanes, tMax, tMin, live, out, blocker, tests, nearest);
 }
 
 void Bvh::occludeLiveInTree(const PacketCone& cone, double sHi, const PacketRays& lanes, const double* tMax,
-                            double tMin, uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+                            double tMin, uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                            PacketNearest* nearest) const {
   LazySlabs slabs(lanes);
   double unused[kBvhWidth];
   auto enters = [&](const BvhNode& node, unsigned candidates) {
@@ -540,19 +555,21 @@ void Bvh::occludeLiveInTree(const PacketCone& cone, double sHi, const PacketRays
   // vector test, about what one segment's box test would cost to rule them out.
   traversePacket(cone, sHi, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
     for (uint32_t i = first; i < first + n && live != 0; ++i)
-      occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
+      occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests, nearest);
     return live == 0;
   });
 }
 
 void Bvh::occlusionPacketFromPoint(const PacketRays& lanes, const double* tMax, double tMin, uint64_t live,
-                                   Occlusion* out, uint32_t* blocker, uint64_t& tests) const {
+                                   Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                                   PacketNearest* nearest) const {
   std::fill(out, out + lanes.count, Occlusion::Clear);
   if (live == 0) return;
+  if (nearest) std::fill(nearest->t, nearest->t + lanes.count, INFINITY);
   // The unbounded primitives first, as traverse() visits them (planeMisses needs a common
   // end, which these segments do not have).
   for (uint32_t i = boundedCount_; i < items_.size() && live != 0; ++i)
-    occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
+    occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests, nearest);
   if (live == 0) return;
   // Unit directions from a common origin: the segments' parameter t is the cone's s.
   Vec3 lo, hi;
@@ -561,20 +578,21 @@ void Bvh::occlusionPacketFromPoint(const PacketRays& lanes, const double* tMax, 
   const PacketCone cone({lanes.ox[first], lanes.oy[first], lanes.oz[first]}, lo, hi, tMin);
   double sHi = -INFINITY;
   for (uint64_t m = live; m != 0; m &= m - 1) sHi = std::max(sHi, tMax[__builtin_ctzll(m)]);
-  occludeLiveInTree(cone, sHi, lanes, tMax, tMin, live, out, blocker, tests);
+  occludeLiveInTree(cone, sHi, lanes, tMax, tMin, live, out, blocker, tests, nearest);
 }
 
 void Bvh::occlusionPacketInCell(const LightBuffer& buffer, int cell, double reach, const PacketRays& lanes,
                                 const double* tMax, double tMin, uint64_t live, Occlusion* out, uint32_t* blocker,
-                                uint64_t& tests) const {
+                                uint64_t& tests, PacketNearest* nearest) const {
   std::fill(out, out + lanes.count, Occlusion::Clear);
+  if (nearest) std::fill(nearest->t, nearest->t + lanes.count, INFINITY);
   for (const LightBuffer::Entry& e : buffer.list(cell)) {
     if (e.near > reach || live == 0) break;
-    occludeLive(e.primitive, lanes, tMax, tMin, live, out, blocker, tests);
+    occludeLive(e.primitive, lanes, tMax, tMin, live, out, blocker, tests, nearest);
   }
   for (uint32_t i : buffer.everywhere())
-    if (live != 0) occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests);
-  occludeLiveByUnbounded(buffer.light(), lanes, tMax, tMin, live, out, blocker, tests);
+    if (live != 0) occludeLive(i, lanes, tMax, tMin, live, out, blocker, tests, nearest);
+  occludeLiveByUnbounded(buffer.light(), lanes, tMax, tMin, live, out, blocker, tests, nearest);
 }
 
 }  // namespace pvrt

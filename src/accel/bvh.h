@@ -69,6 +69,16 @@ struct ClosestHit {
 // What a shadow segment meets, in no particular order.
 enum class Occlusion { Clear, Blocked, Transparent };
 
+// The packet shadow queries' note of each segment's nearest see-through hit. A segment
+// answered Transparent has had every primitive it can meet tested over its whole interval,
+// so this is the first step of its see-through walk (closest(..., skipNoShadow = true) over
+// the same interval), found without walking the tree again: an unbounded primitive wins a
+// tie, as traverse() visits those first. Only the Transparent lanes' entries mean anything.
+struct PacketNearest {
+  double t[kMaxPacket];
+  ClosestHit hit[kMaxPacket];
+};
+
 class Bvh {
  public:
   Bvh() = default;
@@ -189,18 +199,21 @@ class Bvh {
   // in `live` are tested (the others come out Clear); the others' origins must be NaN,
   // as the padding's are, so that the packet's bounds leave them out.
   void occlusionPacket(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
-                       uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+                       uint64_t live, Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                       PacketNearest* nearest = nullptr) const;
   // occlusion() for segments that all start at one point (the area-light samples of a hit
   // point, whose ends differ): segment k runs from that origin (every live lane's) along its
-  // unit direction over (tMin, tMax[k]). Live lanes and padding as above.
+  // unit direction over (tMin, tMax[k]). Live lanes and padding as above. `nearest`, when
+  // given, receives the Transparent segments' nearest see-through hits (for all three).
   void occlusionPacketFromPoint(const PacketRays& segments, const double* tMax, double tMin, uint64_t live,
-                                Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+                                Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                                PacketNearest* nearest = nullptr) const;
   // The same for live segments that all lie in one cell of the light's buffer, `cell`
   // (each meeting occlusionToLight's conditions, `reach` the largest of theirs): the cell's
   // list is tested against the packet instead of the tree walked.
   void occlusionPacketInCell(const LightBuffer& buffer, int cell, double reach, const PacketRays& segments,
                              const double* tMax, double tMin, uint64_t live, Occlusion* out, uint32_t* blocker,
-                             uint64_t& tests) const;
+                             uint64_t& tests, PacketNearest* nearest = nullptr) const;
 
  private:
   template <bool kNoteNearest>
@@ -215,16 +228,19 @@ class Bvh {
   // The packet shadow queries' test of primitive i (no_shadow ones skipped) against the
   // segments in `live`, four at a time for a sphere or a plane: a segment that meets i is
   // Blocked by it, and leaves `live`, when i is opaque, else Transparent.
+  // A see-through hit nearer than a lane's note in `nearest` (when given) replaces it.
   void occludeLive(uint32_t i, const PacketRays& segments, const double* tMax, double tMin, uint64_t& live,
-                   Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+                   Occlusion* out, uint32_t* blocker, uint64_t& tests, PacketNearest* nearest) const;
   // The bounded primitives' part of the packet shadow queries: the walk of the tree within
   // `cone` (up to its parameter sHi), each node entered where a live segment's box test
   // enters it, each leaf's primitives tested against every live segment.
   void occludeLiveInTree(const PacketCone& cone, double sHi, const PacketRays& segments, const double* tMax,
-                         double tMin, uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+                         double tMin, uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                         PacketNearest* nearest) const;
   // The unbounded primitives' part of the packet shadow queries.
   void occludeLiveByUnbounded(const Vec3& apex, const PacketRays& segments, const double* tMax, double tMin,
-                              uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests) const;
+                              uint64_t& live, Occlusion* out, uint32_t* blocker, uint64_t& tests,
+                              PacketNearest* nearest) const;
   // Puts others_ in the order of the records that point to them (the build's last step).
   void followRecords(int threads);
   template <class Visit>

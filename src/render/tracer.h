@@ -31,6 +31,10 @@ class Tracer {
     double dist = 0;
     bool lit = false;  // neither at the point nor behind the surface: lightContribution goes on
     uint8_t occlusion = kUnknown;
+    // When Transparent: the segment's nearest see-through hit (its walk's first step) and
+    // the light buffer's cell of its direction (or -1), as the packet's query found them.
+    const ClosestHit* nearest = nullptr;
+    int cell = -1;
   };
   // A hit point's segment toward one area-light sample (made when first asked for), and
   // the full shadow test's answer (kUnknown until traceSamples finds it) with its blocker.
@@ -47,8 +51,15 @@ class Tracer {
     double dirX[kMaxPacket], dirY[kMaxPacket], dirZ[kMaxPacket], dist[kMaxPacket];
     uint64_t lit;                    // a bit per ray
     uint8_t occlusion[kMaxPacket];  // set by resolveShadows for the lit rays
+    uint64_t noted = 0;              // the rays whose see-through segments have `nearest` noted
+    int cell = -1;                   // the buffer's cell of every noted segment's direction, or -1
+    PacketNearest nearest;
     bool isLit(int k) const { return (lit >> k & 1u) != 0; }
-    KnownLight at(int k) const { return {{dirX[k], dirY[k], dirZ[k]}, dist[k], isLit(k), occlusion[k]}; }
+    KnownLight at(int k) const {
+      const bool see = (noted >> k & 1u) != 0 && occlusion[k] == uint8_t(Occlusion::Transparent);
+      return {{dirX[k], dirY[k], dirZ[k]}, dist[k], isLit(k), occlusion[k], see ? &nearest.hit[k] : nullptr,
+              see ? cell : -1};
+    }
   };
 
  public:
@@ -619,6 +630,7 @@ class Tracer {
     const Light& light = scene_.lights[j];
     if (light.shadowless) return;
     PacketLight& pl = known_[j];
+    pl.noted = 0;
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) {  // sampled per hit, as before
         std::fill(pl.occlusion, pl.occlusion + count, kUnknown);
@@ -680,10 +692,14 @@ class Tracer {
                          : -1;
     if (cell >= 0)
       scene_.bvh.occlusionPacketInCell(*buffer, cell, highest(reach), segments_, segmentEnd_, tol, live,
-                                       occlusion_, blocker_, stats_.intersectionTests);
+                                       occlusion_, blocker_, stats_.intersectionTests, &pl.nearest);
     else
       scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, live, occlusion_, blocker_,
-                                 stats_.intersectionTests);
+                                 stats_.intersectionTests, &pl.nearest);
+    // Every segment tested here has its see-through walk's first step noted (and, with a
+    // common cell, that cell is its direction's: commonCell holds every direction of the box).
+    pl.noted = live;
+    pl.cell = cell;
     for (uint64_t b = live; b != 0; b &= b - 1) {
       const int k = __builtin_ctzll(b);
       pl.occlusion[k] = uint8_t(occlusion_[k]);
@@ -785,7 +801,7 @@ class Tracer {
     if (nl < kPovEpsilon) return {};  // lights behind the surface give nothing at all
     if constexpr ((E & kShadows) != 0) {
       if (!light.shadowless) {
-        intensity = intensity * shadowFactor(light, sp, n, l, dist, inside, known ? known->occlusion : kUnknown);
+        intensity = intensity * shadowFactor(light, sp, n, l, dist, inside, known);
         // POV-Ray's test is on the absolute values: a negative light (or a negative transmit
         // on the way) still shines, darkening what it lights.
         if (std::fabs(intensity.r) < kPovEpsilon && std::fabs(intensity.g) < kPovEpsilon &&
@@ -816,10 +832,12 @@ class Tracer {
   // Fraction of the light (per channel) that reaches p: 0 behind an opaque object, the
   // product of the filter colours of every transparent surface crossed otherwise.
   // `inside` lists the interiors the shadow ray starts in (those of the ray being shaded).
-  // `known` is the occlusion of the segment when tracePacket already found it.
+  // `knownLight`, when given, is what tracePacket found of the segment (its occlusion, when
+  // not kUnknown).
   // The segments start at sp's point, or at the error-bounded origin above it (shadowSegmentOrigin).
   Color shadowFactor(const Light& light, const SurfacePoint& sp, const Vec3& n, const Vec3& l, double dist,
-                     const InteriorList& inside, uint8_t known) {
+                     const InteriorList& inside, const KnownLight* knownLight) {
+    const uint8_t known = knownLight ? knownLight->occlusion : kUnknown;
     if (known != kUnknown) {
       ++stats_.shadowRays;
       switch (Occlusion(known)) {
@@ -839,7 +857,8 @@ class Tracer {
       if (light.area) return areaShadow(light, p, l, inside);
     }
     const size_t j = size_t(&light - scene_.lights.data());
-    if (known != kUnknown) return orderedTransmittance(p, l, dist, inside, bufferOf(j));
+    if (known != kUnknown)
+      return orderedTransmittance(p, l, dist, inside, bufferOf(j), knownLight->cell, knownLight->nearest);
     // The segment runs from p, a hair off the surface point, along the direction from the
     // surface point to the light: within kMargin of the light's ray when that hair is small
     // against the tolerance kept from the light (it always is but for absurd coordinates).
@@ -907,8 +926,8 @@ class Tracer {
   // meet (see bufferServes), they are answered from the few primitives of that list that
   // the line can reach (Bvh::shadowCandidates, listed at the first such step) instead of
   // by walks of the tree. `cell`, when not -1, is the buffer's cell of -dir (or of a
-  // direction a few ulps off it). `first`, when given, is the first step's answer from
-  // those candidates (Bvh::occlusionToLight found it), used when the buffer serves that step.
+  // direction a few ulps off it). `first`, when given, is the first step's answer, found
+  // by the segment's shadow query (Bvh::occlusionToLight, or a packet's PacketNearest).
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
                              const LightBuffer* buffer = nullptr, int cell = -1, const ClosestHit* first = nullptr) {
     const double tol = scene_.tol.shadow;
@@ -935,9 +954,9 @@ class Tracer {
         }
       }
       const std::optional<ClosestHit> found =
-          serves && first ? *first
-          : serves        ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
-                          : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
+          first    ? *first
+          : serves ? scene_.bvh.closestAmong(shadowCandidates_, step, tol, dist - tol, stats_.intersectionTests)
+                   : scene_.bvh.closest(step, tol, dist - tol, stats_.intersectionTests, /*skipNoShadow=*/true);
       first = nullptr;
       if (!found) return k;
       if constexpr ((E & kTransmission) == 0) {
@@ -974,7 +993,9 @@ class Tracer {
     if (s.found == kUnknown) return segmentTransmittance(p, s.dir, s.dist, inside);
     ++stats_.shadowRays;
     if (blockedByCachedObject(Ray{p, s.dir}, s.dist)) return {};
-    return transmittanceAfter(Occlusion(s.found), s.blocker, p, s.dir, s.dist, inside);
+    const size_t k = size_t(j) * light.size1 + i;
+    return transmittanceAfter(Occlusion(s.found), s.blocker, p, s.dir, s.dist, inside, nullptr, -1,
+                              s.found == uint8_t(Occlusion::Transparent) ? &areaNearest_[k] : nullptr);
   }
 
   const AreaSegment& areaSegment(const Light& light, const Vec3& p, const Vec3& l, int i, int j) {
@@ -1050,10 +1071,12 @@ class Tracer {
     segments_.finish(n);
     for (int k = n; k < segments_.groups * 4; ++k) segmentEnd_[k] = -INFINITY;
     scene_.bvh.occlusionPacketFromPoint(segments_, segmentEnd_, scene_.tol.shadow, (uint64_t(1) << n) - 1,
-                                        occlusion_, blocker_, stats_.intersectionTests);
+                                        occlusion_, blocker_, stats_.intersectionTests, &nearest_);
+    if (areaNearest_.size() < areaSegments_.size()) areaNearest_.resize(areaSegments_.size());
     for (int m = 0; m < n; ++m) {
       areaSegments_[at[m]].found = uint8_t(occlusion_[m]);
       areaSegments_[at[m]].blocker = blocker_[m];
+      if (occlusion_[m] == Occlusion::Transparent) areaNearest_[at[m]] = nearest_.hit[m];
     }
   }
 
@@ -1130,6 +1153,9 @@ class Tracer {
   std::vector<Color> cache_;
   const InteriorList* areaInside_ = nullptr;  // interiors the current area-light samples start in
   std::vector<AreaSegment> areaSegments_;  // the current point's, one per sample of the light
+  // The see-through samples' nearest hits (their walks' first steps), as traceSamples found them.
+  std::vector<ClosestHit> areaNearest_;
+  PacketNearest nearest_;  // traceSamples' query's notes
 };
 
 }  // namespace pvrt

@@ -595,6 +595,61 @@ TEST(BvhPacket, OcclusionFromAPointMatchesSingleSegments) {
   EXPECT_GT(answers.transparent, 10);
 }
 
+// A packet query's note of a Transparent segment's nearest see-through hit is the first
+// step of its see-through walk: closest(..., skipNoShadow) over the same interval, the same
+// primitive at the same distance. Segments from one point (area-light samples) and toward
+// one light (a packet's shadows), among see-through spheres and a see-through plane that
+// the segments cross (a tie between the plane and a sphere goes to the plane).
+TEST(BvhPacket, TransparentSegmentsNoteTheFirstStepOfTheirWalk) {
+  SceneMaker gen(38);
+  auto prims = gen.spheres(300, 8, 0.05, 0.8);
+  prims.push_back(make(PlaneShape{Vec3{0, 1, 0}, 0.5}, 9998));
+  prims.back().opaque = false;
+  prims.push_back(make(PlaneShape{Vec3{0, 1, 0}, -9}, 9999));
+  for (size_t i = 0; i < prims.size(); i += 3) prims[i].opaque = false;  // a third see-through
+  const Bvh bvh(prims);
+  int transparent = 0, onPlane = 0;
+  for (int packet = 0; packet < 400; ++packet) {
+    const bool fromPoint = packet % 2 == 0;
+    const Vec3 fixed = gen.point(fromPoint ? 9 : 12);
+    const int count = 1 + packet % (fromPoint ? 16 : kMaxPacket);
+    PacketRays lanes;
+    alignas(32) double tMax[kMaxPacket];
+    std::vector<Ray> segments;
+    for (int k = 0; k < count; ++k) {
+      const Vec3 other = (fromPoint ? gen.point(12) : fixed + gen.point(packet % 4 == 1 ? 0.5 : 6.0));
+      const Vec3 start = fromPoint ? fixed : other, end = fromPoint ? other : fixed;
+      const double dist = length(end - start);
+      segments.push_back({start, (end - start) / dist});
+      tMax[k] = dist - 1e-3;
+      lanes.set(k, start, segments.back().dir);
+    }
+    lanes.finish(count);
+    for (int k = count; k < lanes.groups * 4; ++k) tMax[k] = -INFINITY;
+    const uint64_t live = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
+    Occlusion got[kMaxPacket];
+    uint32_t blocker[kMaxPacket];
+    PacketNearest nearest;
+    uint64_t tests = 0;
+    if (fromPoint)
+      bvh.occlusionPacketFromPoint(lanes, tMax, 1e-3, live, got, blocker, tests, &nearest);
+    else
+      bvh.occlusionPacket(fixed, lanes, tMax, 1e-3, live, got, blocker, tests, &nearest);
+    for (int k = 0; k < count; ++k) {
+      if (got[k] != Occlusion::Transparent) continue;
+      ++transparent;
+      const auto want = bvh.closest(segments[size_t(k)], 1e-3, tMax[k], tests, /*skipNoShadow=*/true);
+      ASSERT_TRUE(want.has_value()) << "packet " << packet << " segment " << k;
+      EXPECT_EQ(want->primitive, nearest.hit[k].primitive) << "packet " << packet << " segment " << k;
+      EXPECT_EQ(want->hit.t, nearest.hit[k].hit.t) << "packet " << packet << " segment " << k;
+      EXPECT_EQ(want->hit.part, nearest.hit[k].hit.part);
+      onPlane += bvh.plane(want->primitive) != nullptr;
+    }
+  }
+  EXPECT_GT(transparent, 200);
+  EXPECT_GT(onPlane, 20);
+}
+
 // Segments left out of `live` (as the tracer leaves out its unlit rays, in place) are
 // reported Clear, and the others get the answers they get alone.
 TEST(BvhPacket, OcclusionTestsOnlyTheLiveSegments) {
