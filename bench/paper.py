@@ -182,6 +182,7 @@ def main(argv):
     write_csv(os.path.join(a.out, "runs.csv"), r.rows, RUN_FIELDS)
     results = paper_analysis.analyse(a, r.rows, ctx)
     meta["total time"] = "%.0f s" % (time.time() - started)
+    meta["load average at end"] = " ".join("%.2f" % v for v in os.getloadavg())
     paper_report.write(a, meta, r.rows, ctx, results)
     failed = [x for x in r.rows if str(x.get("status", "")).startswith("failed")]
     print("paper: wrote %s/report.md (%d runs, %d failed) in %.0f s" % (a.out, len(r.rows), len(failed),

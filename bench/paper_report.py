@@ -213,11 +213,23 @@ def section_memory(res, L):
     L += ["", "![memory](memory.png)", ""]
 
 
+def busy_machine_warning(meta):
+    """A warning when other work ran beside the runs: their times (not their counts) then mean little."""
+    loads = [float(meta[k].split()[0]) for k in ("load average at start", "load average at end") if k in meta]
+    if max(loads, default=0.0) <= 0.5:
+        return []
+    return ["**Warning: the machine was busy** (1-minute load average %s at the start and end): other work ran "
+            "beside these runs, so their times, speedups and the model's errors are not this machine's; work counts, "
+            "loads per rank, images and memory are unaffected. Run again on an idle machine." %
+            " and ".join("%.2f" % v for v in loads), ""]
+
+
 def write(a, meta, rows, ctx, res):
     L = ["# The paper's experiments, reproduced by pvrt", "",
          "Kadir & Khan, \"Parallel Ray Tracing using MPI and OpenMP\" (KTH). The paper's claims and their sources: "
          "bench/paper_claims.csv. Every run: runs.csv (logs in logs/).", "", "| | |", "|---|---|"]
     L += ["| %s | %s |" % kv for kv in meta.items()] + [""]
+    L += busy_machine_warning(meta)
     L += ["## Figs. 4, 5: pixel load maps, c = 8 (log scale)", ""] + claim_lines("fig. 4") + claim_lines("fig. 5")
     L += ["![fig. 4](fig4_loadmap_scene1.png) ![fig. 5](fig5_loadmap_scene2.png)", ""]
     section_scaling(res, L, a)
