@@ -62,10 +62,9 @@ void waitSleeping(MPI_Request& request, MPI_Status* status, const char* what) {
 std::string gTransports = "not started";
 
 // Open MPI's default point-to-point layer, where UCX is installed (Debian's build), starts by
-// probing every device UCX knows: about 0.2 s of MPI_Init and MPI_Finalize in every rank, as
-// long as a whole 16-rank render of paper1 (measured: 2 ranks of a tiny render under mpirun,
-// 0.63-0.71 s whole, 0.41-0.47 s with ob1, 0.32-0.43 s with ob1 over vader and no UCX
-// one-sided layer). When every rank of the job runs on this node (mpirun says so through
+// probing every device UCX knows: about 0.2 s of MPI_Init and MPI_Finalize in every rank
+// (measured: 2 ranks of a tiny render under mpirun, 0.63-0.71 s whole, 0.41-0.47 s with ob1,
+// 0.32-0.43 s with ob1 over vader and no UCX one-sided layer; docs/parallel.md). When every rank of the job runs on this node (mpirun says so through
 // OMPI_COMM_WORLD_SIZE and OMPI_COMM_WORLD_LOCAL_SIZE) shared memory is all the job needs, so
 // Open MPI is asked for ob1 over shared memory (vader) unless the user chose otherwise
 // (`mpirun --mca pml ...` reaches the ranks as OMPI_MCA_pml, which is never overwritten), or
