@@ -33,6 +33,7 @@
 #include "render/time_budget.h"
 #include "cli/light_buffer_totals.h"
 #include "core/memory_use.h"
+#include "core/stage_clock.h"
 #include "scene/xml_loader.h"
 #include "scene/xml_writer.h"
 
@@ -91,10 +92,6 @@ struct RenderOptions {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-struct StagePeaks {
-  size_t load = 0, build = 0;  // peak resident bytes at the end of load and of build
-};
-
 // The NaN census (render/kernel_impl.h): on stderr whatever the options, since such
 // pixels are not what the scene asked for.
 void warnNonFinite(const RenderStats& t) {
@@ -108,8 +105,7 @@ void warnNonFinite(const RenderStats& t) {
 }
 
 void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& scene, const RenderResult& r,
-                double loadS, double buildS, double writeS, StagePeaks peaks,
-                const std::vector<RankStats>& ranks = {}) {
+                const RunFigures& f, const std::vector<RankStats>& ranks = {}) {
   const RenderStats& t = r.totals;
   auto line = [](const char* what, uint64_t n) { fmt::print("  {:<22}{:>16}\n", what, n); };
   fmt::print("Render statistics\n");
@@ -168,12 +164,17 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
     fmt::print("  Memory limit          {}{}: {} light(s) left without a buffer\n", formatBytes(scene.memoryLimit),
                scene.memoryLimitScaled ? " (the BVH and 4 times it for light buffers; --memory-limit sets it)" : "",
                scene.lightsOverMemoryLimit);
-  fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", loadS,
-             buildS, r.seconds, writeS);
+  fmt::print("  Time                  load {:.4f} s, build {:.4f} s, render {:.4f} s, write {:.4f} s\n", f.load.wall,
+             f.build.wall, f.render.wall, f.write.wall);
+  // CPU / wall: the cores each stage kept busy (a serial stage stays near 1).
+  fmt::print("  CPU time              load {:.3f} s ({:.2f} cores), build {:.3f} s ({:.2f}), render {:.3f} s ({:.2f}), "
+             "write {:.3f} s ({:.2f}){}\n",
+             f.load.cpu, f.load.cores(), f.build.cpu, f.build.cores(), f.render.cpu, f.render.cores(), f.write.cpu,
+             f.write.cores(), ranks.empty() ? "" : ", rank 0");
   fmt::print("  Rays per second       {:.0f}\n", r.seconds > 0 ? double(t.totalRays()) / r.seconds : 0.0);
   const auto mib = [](size_t bytes) { return double(bytes) / double(1 << 20); };
   fmt::print("  Peak memory           {:.1f} MiB (after load {:.1f}, after build {:.1f}){}\n",
-             mib(peakResidentBytes()), mib(peaks.load), mib(peaks.build), ranks.empty() ? "" : ", rank 0");
+             mib(peakResidentBytes()), mib(f.loadPeakBytes), mib(f.buildPeakBytes), ranks.empty() ? "" : ", rank 0");
   if (!ranks.empty()) {
     fmt::print("  Gather                {}\n", o.gatherName);
     fmt::print("  MPI transports        {}\n", cluster::transports());
@@ -270,7 +271,7 @@ struct Prepared {
   SceneDesc desc;
   RenderSettings settings;
   Scene scene;
-  double loadS = 0, buildS = 0;
+  StageTime load, build;
   size_t loadPeak = 0, buildPeak = 0;  // peak resident bytes at the end of each stage
   std::string savedScene;  // --save-scene's bytes, written with the image
 };
@@ -289,9 +290,9 @@ Prepared prepare(const RenderOptions& o, bool writes) {
     build.memoryLimitGiven = true;
   }
   Prepared p;
-  const auto t0 = Clock::now();
+  const StageClock loading;
   p.desc = loadSceneFile(o.scene);
-  p.loadS = since(t0);
+  p.load = loading.elapsed();
   p.loadPeak = peakResidentBytes();
 
   RenderSettings& s = p.settings;
@@ -333,18 +334,21 @@ Prepared prepare(const RenderOptions& o, bool writes) {
     copy.image = ImageDesc{s.width, s.height, {}};
     p.savedScene = sceneToXml(copy);
   }
-  const auto t1 = Clock::now();
+  const StageClock building;
   p.scene = buildScene(std::move(p.desc), build);  // frees the objects' descriptions early
-  p.buildS = since(t1);
+  p.build = building.elapsed();
   p.buildPeak = peakResidentBytes();
   return p;
 }
 
-RunFigures stageFigures(const Prepared& p, double writeSeconds, const BudgetPlan* budget) {
+// `render`: the CPU time around the render; its wall time is the renderer's own.
+RunFigures stageFigures(const Prepared& p, const RenderResult& r, double renderCpu, StageTime write,
+                        const BudgetPlan* budget) {
   RunFigures f;
-  f.loadSeconds = p.loadS;
-  f.buildSeconds = p.buildS;
-  f.writeSeconds = writeSeconds;
+  f.load = p.load;
+  f.build = p.build;
+  f.render = {r.seconds, renderCpu};
+  f.write = write;
   f.loadPeakBytes = p.loadPeak;
   f.buildPeakBytes = p.buildPeak;
   f.budget = budget;
@@ -411,7 +415,9 @@ int runLocal(const RenderOptions& o) {
   const RenderSettings& s = p.settings;
   ProgressBar bar(!o.quiet);
   p.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
+  const double renderCpu0 = processCpuSeconds();
   const RenderResult r = render(p.scene, s);
+  const double renderCpu = processCpuSeconds() - renderCpu0;
   bar.finish();
   if (r.cancelled || interrupt::requested()) return interrupted();
   if (inPasses) {
@@ -422,17 +428,17 @@ int runLocal(const RenderOptions& o) {
                  r.passes.size() == 1 && since(start) > o.timeBudget ? ", over the budget even at c=1" : "");
   }
   // From here on an interrupt lets the (atomic) write finish: the image is complete.
-  const auto t2 = Clock::now();
+  const StageClock writing;
   stageImage(out, o.output, r.image);
   if (!o.loadMap.empty()) stageLoadMap(out, o.loadMap, r.load, r.image.width(), r.image.height());
   if (!o.saveScene.empty()) out.stageBytes(o.saveScene, p.savedScene);
-  const double writeS = since(t2);  // encoding; the commit renames
-  RunFigures figures = stageFigures(p, writeS, budget ? &*budget : nullptr);
+  const StageTime write = writing.elapsed();  // encoding; the commit renames
+  RunFigures figures = stageFigures(p, r, renderCpu, write, budget ? &*budget : nullptr);
   figures.timeBudget = o.hasTimeBudget ? o.timeBudget : 0;
   stageStatsJson(out, o, s, p.scene, r, figures);
   out.commit();
   warnNonFinite(r.totals);
-  if (o.stats) printStats(o, s, p.scene, r, p.loadS, p.buildS, writeS, {p.loadPeak, p.buildPeak});
+  if (o.stats) printStats(o, s, p.scene, r, figures);
   if (!o.quiet && !o.stats)
     fmt::print("wrote {} ({} x {}) in {:.3f} s\n", o.output, r.image.width(), r.image.height(), since(start));
   return 0;
@@ -490,8 +496,11 @@ int runMpi(const RenderOptions& o) {
   }
   // Stage 2, collective: a failure here (out of memory) can only end the whole job.
   DistributedResult r;
+  double renderCpu = 0;  // this rank's, communication included
   try {
+    const double cpu0 = processCpuSeconds();
     r = renderDistributed(p->scene, p->settings, d);
+    renderCpu = processCpuSeconds() - cpu0;
   } catch (const Error& e) {
     std::fprintf(stderr, "%s\n", e.what());
     removeStagedFilesNow();  // the abort runs no destructors
@@ -503,7 +512,7 @@ int runMpi(const RenderOptions& o) {
   }
   if (me != 0) return 0;  // only rank 0 writes
   const RenderSettings& s = p->settings;
-  const auto t2 = Clock::now();
+  const StageClock writing;
   if (d.eightBit) {
     const std::string format = imageFormatOf(o.output);
     writeImageFile8(r.rgb8, r.width, r.height, out->stage(o.output, format), format, o.output);
@@ -512,11 +521,12 @@ int runMpi(const RenderOptions& o) {
   }
   if (!o.loadMap.empty()) stageLoadMap(*out, o.loadMap, r.render.load, r.width, r.height);
   if (!o.saveScene.empty()) out->stageBytes(o.saveScene, p->savedScene);
-  const double writeS = since(t2);  // encoding; the commit renames
-  stageStatsJson(*out, o, s, p->scene, r.render, stageFigures(*p, writeS, nullptr), r.ranks);
+  // The write stage is the encoding; the commit renames.
+  const RunFigures figures = stageFigures(*p, r.render, renderCpu, writing.elapsed(), nullptr);
+  stageStatsJson(*out, o, s, p->scene, r.render, figures, r.ranks);
   out->commit();
   warnNonFinite(r.render.totals);
-  if (o.stats) printStats(o, s, p->scene, r.render, p->loadS, p->buildS, writeS, {p->loadPeak, p->buildPeak}, r.ranks);
+  if (o.stats) printStats(o, s, p->scene, r.render, figures, r.ranks);
   if (!o.quiet && !o.stats)
     fmt::print("wrote {} ({} x {}) with {} ranks in {:.3f} s\n", o.output, r.width, r.height, cluster::size(),
                r.render.seconds);

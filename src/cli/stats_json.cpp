@@ -99,7 +99,9 @@ std::string statsJson(const RunFigures& run, const RenderSettings& s, const Scen
                         {"build_seconds", scene.lightBufferSeconds}};
   j["memory_limit"] = {{"bytes", scene.memoryLimit}, {"lights_without_buffer", scene.lightsOverMemoryLimit}};
   j["seconds"] = {
-      {"load", run.loadSeconds}, {"build", run.buildSeconds}, {"render", r.seconds}, {"write", run.writeSeconds}};
+      {"load", run.load.wall}, {"build", run.build.wall}, {"render", r.seconds}, {"write", run.write.wall}};
+  j["cpu_seconds"] = {
+      {"load", run.load.cpu}, {"build", run.build.cpu}, {"render", run.render.cpu}, {"write", run.write.cpu}};
   j["rays_per_second"] = r.seconds > 0 ? double(r.totals.totalRays()) / r.seconds : 0.0;
   j["peak_memory_bytes"] = {
       {"run", run.peakBytes}, {"after_load", run.loadPeakBytes}, {"after_build", run.buildPeakBytes}};

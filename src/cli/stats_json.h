@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/stage_clock.h"
 #include "render/distributed.h"
 #include "render/time_budget.h"
 
@@ -14,7 +15,7 @@ namespace pvrt::cli {
 // What the run knows besides the render's own result.
 struct RunFigures {
   std::string scene, output, backend, gather;  // gather: MPI only
-  double loadSeconds = 0, buildSeconds = 0, writeSeconds = 0;
+  StageTime load, build, render, write;  // wall and CPU time of each stage (core/stage_clock.h)
   size_t peakBytes = 0, loadPeakBytes = 0, buildPeakBytes = 0;  // rank 0's under MPI
   const BudgetPlan* budget = nullptr;                           // with --time-budget and pilots
   double timeBudget = 0;                                        // --time-budget's seconds, or 0

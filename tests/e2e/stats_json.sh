@@ -25,6 +25,16 @@ assert sum(w["work"] for w in j["workers"]) == j["counts"]["work"]
 m = re.search(r"Time\s+load ([\d.]+) s, build ([\d.]+) s, render ([\d.]+) s, write ([\d.]+) s", text)
 for i, stage in enumerate(["load", "build", "render", "write"]):
     assert abs(j["seconds"][stage] - float(m[i + 1])) < 1e-4, (stage, j["seconds"][stage], m[i + 1])
+m = re.search(r"CPU time\s+load ([\d.]+) s \(([\d.]+) cores\), build ([\d.]+) s \(([\d.]+)\), render ([\d.]+) s "
+              r"\(([\d.]+)\), write ([\d.]+) s \(([\d.]+)\)", text)
+assert m, "no CPU time line"
+for i, stage in enumerate(["load", "build", "render", "write"]):
+    cpu, cores = float(m[2 * i + 1]), float(m[2 * i + 2])
+    assert abs(j["cpu_seconds"][stage] - cpu) < 1e-3, (stage, j["cpu_seconds"][stage], cpu)
+    # CPU time is the process's: at most the 2 threads' worth of the stage's wall time, plus the clocks' grain.
+    assert 0 <= cores <= 2.2 or j["seconds"][stage] < 0.002, (stage, cores)
+# Rendering 10,240 rays keeps a CPU busy for most of its wall time.
+assert j["cpu_seconds"]["render"] > 0.5 * j["seconds"]["render"], (j["cpu_seconds"], j["seconds"])
 m = re.search(r"BVH\s+(\d+) nodes, (\d+) leaves, depth (\d+)", text)
 assert (j["bvh"]["nodes"], j["bvh"]["leaves"], j["bvh"]["depth"]) == tuple(map(int, m.groups())), j["bvh"]
 assert j["kernel_effects"] in text
