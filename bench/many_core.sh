@@ -134,10 +134,14 @@ for rnd, t, name, exe in plan:
     m = re.search(r"load ([\d.]+) s, build ([\d.]+) s, render ([\d.]+) s, write ([\d.]+) s", text)
     bvh = re.search(r"BVH .* built in ([\d.]+) s", text)
     lb = re.search(r"Light buffers .* built in ([\d.]+) s", text)
+    # Each stage's CPU time and the cores it kept busy (builds before ed28ef9 do not print it).
+    cpu = re.search(r"CPU time\s+load ([\d.]+) s \(([\d.]+) cores\), build ([\d.]+) s \(([\d.]+)\)", text)
     row = dict(binary=name, threads=t, run=rnd, rc=os.waitstatus_to_exitcode(status),
                peak_rss_mib=usage.ru_maxrss / 1024,
                load_s=m and m[1], build_s=m and m[2], render_s=m and m[3], write_s=m and m[4],
-               bvh_s=bvh and bvh[1], light_buffers_s=lb and lb[1])
+               bvh_s=bvh and bvh[1], light_buffers_s=lb and lb[1],
+               load_cpu_s=cpu and cpu[1], load_cores=cpu and cpu[2], build_cpu_s=cpu and cpu[3],
+               build_cores=cpu and cpu[4])
     print(row, flush=True)
     rows.append(row)
 with open(csv, "w") as f:

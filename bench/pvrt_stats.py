@@ -27,6 +27,8 @@ def figures(st):
     for key in ("load", "build", "render", "write"):
         if key in sec:
             r[key + "_s"] = sec[key]
+    for key, cpu in st.get("cpu_seconds", {}).items():
+        r[key + "_cpu_s"] = cpu
     bvh = st.get("bvh", {})
     if bvh:
         r.update(bvh_nodes=bvh["nodes"], bvh_kib=bvh["bytes"] / 1024.0, bvh_build_s=bvh["build_seconds"])
