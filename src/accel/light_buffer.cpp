@@ -34,12 +34,14 @@ struct Range {
   double lo, hi;
 };
 
-// The range of x / w over x in [xLo, xHi] and w in (max(wLo, 0), wHi], wHi > 0: the
-// ratio is monotonic in each, so its extremes lie at the corners, or at infinity when w
-// can come arbitrarily close to zero.
-Range ratio(double xLo, double xHi, double wLo, double wHi) {
-  if (wLo <= 0) return {xLo < 0 ? -kInf : xLo / wHi, xHi > 0 ? kInf : xHi / wHi};
-  return {std::min(xLo / wLo, xLo / wHi), std::max(xHi / wLo, xHi / wHi)};
+// The range of x / w over x in [xLo, xHi] and w in (max(wLo, 0), wHi], wHi > 0, given
+// 1 / wLo and 1 / wHi: the ratio is monotonic in each, so its extremes lie at the corners,
+// or at infinity when w can come arbitrarily close to zero. Products with the reciprocals
+// (a face's two divisions, not eight) are within 2 ulps of the quotients, far inside the
+// footprint's margin.
+Range ratio(double xLo, double xHi, double wLo, double invLo, double invHi) {
+  if (wLo <= 0) return {xLo < 0 ? -kInf : xLo * invHi, xHi > 0 ? kInf : xHi * invHi};
+  return {std::min(xLo * invLo, xLo * invHi), std::max(xHi * invLo, xHi * invHi)};
 }
 
 // The face coordinate's cell, clamped to the face (NaN and infinities included).
@@ -106,7 +108,14 @@ Footprint footprint(const RelativeBox& box, int face, int res) {
   const double wLo = negative ? -box.hi[a] : box.lo[a], wHi = negative ? -box.lo[a] : box.hi[a];
   Footprint f;
   if (!(wHi > 0)) return f;
-  Range u = ratio(box.lo[b], box.hi[b], wLo, wHi), v = ratio(box.lo[c], box.hi[c], wLo, wHi);
+  // The box is seen on the face only where |x_b| and |x_c| are at most about w <= wHi: a box
+  // beyond that (most faces of most boxes: a small one is seen on one or two of six) is ruled
+  // out without a division. The factor's 1e-6 exceeds the margin below and the rounding, so
+  // only faces that the quotients would rule out are.
+  const double reach = wHi * (1 + 1e-6);
+  if (box.lo[b] > reach || box.hi[b] < -reach || box.lo[c] > reach || box.hi[c] < -reach) return f;
+  const double invLo = 1 / wLo, invHi = 1 / wHi;
+  Range u = ratio(box.lo[b], box.hi[b], wLo, invLo, invHi), v = ratio(box.lo[c], box.hi[c], wLo, invLo, invHi);
   // A direction within kMargin of the box's moves u and v by at most 2 kMargin (|u|, |v|
   // <= 1 on a face); the rest covers the rounding of the divisions and of the lookup.
   const double m = 2 * LightBuffer::kMargin + 1e-12;
@@ -152,13 +161,22 @@ struct Cone {
   bool any = false;
 };
 
+// The half-angle is (asin(r / d) + widening) / 2. Its sine and cosine come from half-angle
+// and sum identities rather than from asin, sin and cos, which a big scene would call for
+// every (light, sphere) pair: with s = r / d and c = sqrt(1 - s^2), sin(asin(s) / 2) =
+// s / sqrt(2 (1 + c)) and cos(asin(s) / 2) = sqrt((1 + c) / 2), both without cancellation;
+// their few ulps of rounding are far below the 1e-9 radians of widening.
 Cone coneOf(const LightBuffer::Occluder& o, const Vec3& light) {
+  static const double kWiden = 0.5 * (2 * LightBuffer::kMargin + 1e-9);
+  static const double kSinWiden = std::sin(kWiden), kCosWiden = std::cos(kWiden);
   Cone cone;
   const Vec3 c = o.center - light;
   const double d = length(c);
   if (!(o.radius < d) || !std::isfinite(d)) return cone;
-  const double half = 0.5 * (std::asin(o.radius / d) + 2 * LightBuffer::kMargin + 1e-9);
-  cone = {c / d, std::sin(half), std::cos(half), true};
+  const double s = o.radius / d;
+  const double cosA = std::sqrt((1 - s) * (1 + s));
+  const double sinHalfA = s / std::sqrt(2 * (1 + cosA)), cosHalfA = std::sqrt(0.5 * (1 + cosA));
+  cone = {c / d, sinHalfA * kCosWiden + cosHalfA * kSinWiden, cosHalfA * kCosWiden - sinHalfA * kSinWiden, true};
   return cone;
 }
 
@@ -356,10 +374,12 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
   // Every (cell, entry) pair as the footprints and cones give them, a block of primitives at
   // a time, then moved to their cells: each footprint and cone is worked out once.
   // Each light's entries: at most kEntriesPerPrimitive a primitive (`usual`), and what its
-  // share of the memory leaves beside its cells. When a share is short of that, each light's
-  // entries are counted first (a second pass over the footprints, only then), and the
-  // batch's memory goes to its lights in order, each taking what it needs while that fits:
-  // the lights left without a buffer are the last ones, whatever the number of threads.
+  // equal share of the batch's memory leaves beside its cells. Where a share is short of
+  // that (`tight`) and a light's entries outgrow it, the batch's memory goes to its lights in
+  // order instead, each taking what it needs while that fits, so that the lights left without
+  // a buffer are the last ones, whatever the number of threads: each light's entries are
+  // counted (a second pass over the footprints, only then) and listed again. Where every
+  // light's entries fit its equal share, that order would give each what it listed.
   const size_t usual = kEntriesPerPrimitive * occluders.size() + 65536;
   const auto cellBytes = [&](size_t l) { return (size_t(out[l].emptyCell_) + 2) * kBuildBytesPerCell; };
   std::vector<size_t> budget(count);
@@ -369,7 +389,54 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
     budget[l] = std::min(usual, shareBytes > cellBytes(l) ? (shareBytes - cellBytes(l)) / kBuildBytesPerEntry : 0);
     tight = tight || budget[l] < usual;
   }
-  if (tight) {
+  std::vector<Part>& parts = kept.parts;
+  // What the batches before left counts toward this batch's share; more than the share is given
+  // back first, so that the build never holds more than its memory limit allows.
+  size_t retained = 0;
+  for (const Part& part : parts)
+    retained += part.listings.capacity() * sizeof(Listing) + part.everywhere.capacity() * sizeof(uint32_t);
+  if (retained > shareBytes * count) std::vector<Part>().swap(parts);
+  if (parts.size() < pieces.size()) parts.resize(pieces.size());
+  std::vector<std::atomic<size_t>> listed(count);  // by a light's blocks done so far
+  const auto listWithinBudgets = [&] {
+    for (Part& part : parts) {
+      part.listings.clear();
+      part.everywhere.clear();
+    }
+    for (std::atomic<size_t>& n : listed) n = 0;
+    parallelIndices(pieces.size(), threads, [&](size_t p) {
+      const size_t l = pieces[p].light;
+      const Vec3& light = lights[l];
+      const int res = out[l].res_;
+      Part& part = parts[p];
+      if (budget[l] == 0) return;  // not even its cells fit
+      part.listings.reserve(2 * (blocks.end(pieces[p].block) - blocks.begin(pieces[p].block)));
+      for (size_t i = blocks.begin(pieces[p].block); i < blocks.end(pieces[p].block); ++i) {
+        if (occluders[i].box.empty()) continue;
+        const RelativeBox box(occluders[i].box, light);
+        Footprint f[6];
+        int cellsSeen = 0;
+        for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res)).cells();
+        if (box.holdsLight() || cellsSeen > kCrowded) {
+          part.everywhere.push_back(uint32_t(i));
+          continue;
+        }
+        const Entry e{roundDown(box.distance()), uint32_t(i)};
+        const LightBuffer& buffer = out[l];
+        forEachCell(f, coneOf(occluders[i], light), *conesOf[l], [&](int face, int ci, int cj) {
+          part.listings.push_back({uint32_t(buffer.cellIndex(face, ci, cj)), e});
+        });
+        // No buffer (below) once the budget is spent: no need to list the rest.
+        if (part.listings.size() > budget[l] || listed[l].load(std::memory_order_relaxed) > budget[l]) break;
+        if ((i & 1023) == 0 && interrupt::requested()) break;  // the buffers are thrown away
+      }
+      listed[l] += part.listings.size();
+    });
+  };
+  listWithinBudgets();
+  bool outgrown = false;
+  for (size_t l = 0; l < count; ++l) outgrown = outgrown || budget[l] == 0 || listed[l] > budget[l];
+  if (tight && outgrown && !interrupt::requested()) {
     std::vector<size_t> counted(pieces.size(), 0);
     parallelIndices(pieces.size(), threads, [&](size_t p) {
       const size_t l = pieces[p].light;
@@ -398,47 +465,8 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
         overLimit[l] = 1;
       }
     }
+    listWithinBudgets();
   }
-  std::vector<Part>& parts = kept.parts;
-  // What the batches before left counts toward this batch's share; more than the share is given
-  // back first, so that the build never holds more than its memory limit allows.
-  size_t retained = 0;
-  for (const Part& part : parts)
-    retained += part.listings.capacity() * sizeof(Listing) + part.everywhere.capacity() * sizeof(uint32_t);
-  if (retained > shareBytes * count) std::vector<Part>().swap(parts);
-  if (parts.size() < pieces.size()) parts.resize(pieces.size());
-  for (Part& part : parts) {
-    part.listings.clear();
-    part.everywhere.clear();
-  }
-  std::vector<std::atomic<size_t>> listed(count);  // by a light's blocks done so far
-  parallelIndices(pieces.size(), threads, [&](size_t p) {
-    const size_t l = pieces[p].light;
-    const Vec3& light = lights[l];
-    const int res = out[l].res_;
-    Part& part = parts[p];
-    if (budget[l] == 0) return;  // not even its cells fit
-    part.listings.reserve(2 * (blocks.end(pieces[p].block) - blocks.begin(pieces[p].block)));
-    for (size_t i = blocks.begin(pieces[p].block); i < blocks.end(pieces[p].block); ++i) {
-      if (occluders[i].box.empty()) continue;
-      const RelativeBox box(occluders[i].box, light);
-      Footprint f[6];
-      int cellsSeen = 0;
-      for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res)).cells();
-      if (box.holdsLight() || cellsSeen > kCrowded) {
-        part.everywhere.push_back(uint32_t(i));
-        continue;
-      }
-      const Entry e{roundDown(box.distance()), uint32_t(i)};
-      const LightBuffer& buffer = out[l];
-      forEachCell(f, coneOf(occluders[i], light), *conesOf[l],
-                  [&](int face, int ci, int cj) { part.listings.push_back({uint32_t(buffer.cellIndex(face, ci, cj)), e}); });
-      // No buffer (below) once the budget is spent: no need to list the rest.
-      if (part.listings.size() > budget[l] || listed[l].load(std::memory_order_relaxed) > budget[l]) break;
-      if ((i & 1023) == 0 && interrupt::requested()) break;  // the buffers are thrown away
-    }
-    listed[l] += part.listings.size();
-  });
   std::vector<size_t> cells(count, 0);  // 0 for a light left without a buffer
   for (size_t l = 0; l < count; ++l) {
     LightBuffer& buffer = out[l];

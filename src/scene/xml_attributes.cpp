@@ -63,6 +63,15 @@ size_t distance(std::string_view a, std::string_view b) {
 
 std::string attr(const char* name) { return "attribute '" + std::string(name) + "'"; }
 
+// a == b, for attribute names (a few letters): compared here rather than by a call, since an
+// element is asked about a dozen names and most differ from a given one in length.
+bool sameName(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i]) return false;
+  return true;
+}
+
 bool separator(char c) { return c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r'; }
 
 // Calls f(word) for every word of `text` (words are separated by spaces, commas, tabs and
@@ -123,11 +132,12 @@ std::vector<std::string_view> words(const char* text) {
 Attributes::Attributes(const tinyxml2::XMLElement* e, FileName file,
                        const std::vector<std::string_view>& known, int lineOffset)
     : e_(e), file_(file), lineOffset_(lineOffset) {
-  int count = 0;
   for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next()) {
     const std::string_view name = a->Name();
-    if (std::find(known.begin(), known.end(), name) != known.end()) {
-      if (++count > 64) throw error("more than 64 attributes");  // no element knows that many (see used_)
+    if (std::any_of(known.begin(), known.end(), [&](std::string_view k) { return sameName(k, name); })) {
+      // No element knows that many (see named_).
+      if (count_ == kMaxAttributes) throw error("more than " + std::to_string(kMaxAttributes) + " attributes");
+      named_[size_t(count_++)] = {name.data(), name.size(), a};
       continue;
     }
     std::string what = "unknown attribute '" + printable(name) + "'";
@@ -148,11 +158,11 @@ Error Attributes::missing(const char* name) const {
 std::string Attributes::raw(const char* name) const { return e_->Attribute(name); }
 
 const tinyxml2::XMLAttribute* Attributes::find(const char* name) {
-  int i = 0;
-  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next(), ++i) {
-    if (std::strcmp(a->Name(), name) == 0) {
+  const std::string_view wanted = name;
+  for (int i = 0; i < count_; ++i) {
+    if (sameName({named_[size_t(i)].name, named_[size_t(i)].size}, wanted)) {
       used_ |= uint64_t(1) << i;
-      return a;
+      return named_[size_t(i)].attribute;
     }
   }
   return nullptr;
@@ -243,9 +253,8 @@ std::string Attributes::text(const char* name) {
 }
 
 void Attributes::done() const {
-  int i = 0;
-  for (const tinyxml2::XMLAttribute* a = e_->FirstAttribute(); a; a = a->Next(), ++i)
-    if (!(used_ >> i & 1u)) throw error("unknown attribute '" + printable(a->Name()) + "'");
+  for (int i = 0; i < count_; ++i)
+    if (!(used_ >> i & 1u)) throw error("unknown attribute '" + printable({named_[size_t(i)].name, named_[size_t(i)].size}) + "'");
 }
 
 double Attributes::parseNumber(const char* name, std::string_view w) const {

@@ -3,6 +3,7 @@
 // becomes a one-line `file:line: error: element: what` pvrt::Error.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -75,12 +76,24 @@ class Attributes {
   std::string raw(const char* name) const;
   std::string quoted(const char* name) const { return "\"" + printable(raw(name)) + "\""; }
 
+  // An attribute of the element with its name, read once: an element is asked about a dozen
+  // names, and a big scene has millions of elements.
+  // (A plain aggregate: the array of them below is left unset, not cleared, for each element.)
+  struct Named {
+    const char* name;
+    size_t size;
+    const tinyxml2::XMLAttribute* attribute;
+  };
+
   const tinyxml2::XMLElement* e_;
   FileName file_;
   int lineOffset_ = 0;
-  // Bit i: the element's i-th attribute has been asked about. The constructor refuses
-  // unknown attributes and XML refuses repeated ones, so an element has no more
-  // attributes than its known list, far fewer than 64.
+  // The constructor refuses unknown attributes and XML refuses repeated ones, so an element
+  // has no more attributes than its known list, far fewer than 64.
+  static constexpr int kMaxAttributes = 64;
+  std::array<Named, kMaxAttributes> named_;  // [0, count_) in the element's order
+  int count_ = 0;
+  // Bit i: named_[i] has been asked about.
   uint64_t used_ = 0;
 };
 

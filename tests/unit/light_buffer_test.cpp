@@ -587,16 +587,27 @@ TEST(LightBuffer, AMemoryLimitLeavesLightsOutButNotAPixel) {
   size_t previous = 0;
   // The build holds up to 20 bytes an entry (LightBuffer::kBuildBytesPerEntry) where the
   // buffer keeps 8: three times the buffers' bytes let every light have one.
-  for (size_t limit : {size_t(0), bvh, bvh + fullBytes / 4, bvh + fullBytes, bvh + 3 * fullBytes + (1u << 20)}) {
+  // Limits between those where the lights' equal shares hold all their entries and those
+  // where the lights must be counted and served in order (LightBuffer::buildBatch).
+  std::vector<size_t> limits{0, bvh};
+  for (int k = 1; k <= 12; ++k) limits.push_back(bvh + fullBytes * size_t(k) / 4);
+  limits.push_back(bvh + 3 * fullBytes + (1u << 20));
+  for (size_t limit : limits) {
     const Scene limited = buildScene(desc, {limit, true});
     size_t bytes = 0, valid = 0;
     bool gap = false;  // the lights with a buffer come first
-    for (const LightBuffer& lb : limited.lightBuffers) {
+    for (size_t l = 0; l < limited.lightBuffers.size(); ++l) {
+      const LightBuffer& lb = limited.lightBuffers[l];
       bytes += lb.bytes();
       valid += lb.valid();
       EXPECT_EQ(lb.overMemoryLimit(), !lb.valid()) << "limit " << limit;
-      if (!lb.valid()) gap = true;
-      else EXPECT_FALSE(gap) << "limit " << limit;
+      if (!lb.valid()) {
+        gap = true;
+      } else {
+        EXPECT_FALSE(gap) << "limit " << limit;
+        // A buffer that fits is the one built without a limit.
+        EXPECT_EQ(lb.entries(), full.lightBuffers[l].entries()) << "limit " << limit << " light " << l;
+      }
     }
     EXPECT_LE(bytes + bvh, std::max(limit, bvh)) << "limit " << limit;
     EXPECT_EQ(limited.lightsOverMemoryLimit, limited.lights.size() - valid);
