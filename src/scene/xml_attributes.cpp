@@ -100,6 +100,30 @@ size_t wordsIn(const char* text, std::string_view* out, size_t max) {
   return n;
 }
 
+constexpr size_t kNotPlain = size_t(-1);
+
+// How many numbers `text` holds, when it is at most `max` numbers that parseNumber() takes as
+// they are (finite, within kMaxSceneNumber, not too small for a double), each read once where
+// they lie; kNotPlain for anything else, whose reading and message are left to the word-by-word
+// path (wordsIn, parseNumber). A big scene has millions of numbers, nearly all plain.
+size_t plainNumbers(const char* text, double* out, size_t max) {
+  const char* p = text;
+  const char* const end = text + std::strlen(text);
+  size_t n = 0;
+  for (;;) {
+    while (p != end && separator(*p)) ++p;
+    if (p == end) return n;
+    if (n == max) return kNotPlain;
+    const char* const begin = *p == '+' ? p + 1 : p;  // as parseNumber() reads a word
+    const auto [next, ec] = std::from_chars(begin, end, out[n]);
+    if (ec != std::errc() || (next != end && !separator(*next)) || !std::isfinite(out[n]) ||
+        std::fabs(out[n]) > kMaxSceneNumber)
+      return kNotPlain;
+    ++n;
+    p = next;
+  }
+}
+
 }  // namespace
 
 std::string printable(std::string_view text, size_t max) {
@@ -173,6 +197,7 @@ bool Attributes::has(const char* name) { return find(name) != nullptr; }
 void Attributes::numbers(const char* name, double* out, size_t count, const char* what) {
   const tinyxml2::XMLAttribute* a = find(name);
   if (!a) throw missing(name);
+  if (plainNumbers(a->Value(), out, count) == count) return;
   std::string_view w[3];
   if (wordsIn(a->Value(), w, count) != count) throw error(attr(name) + what + quoted(name));
   for (size_t i = 0; i < count; ++i) out[i] = parseNumber(name, w[i]);
@@ -228,6 +253,10 @@ Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
 Vec3 Attributes::vecOrScalar(const char* name) {
   const tinyxml2::XMLAttribute* a = find(name);
   if (!a) throw missing(name);
+  double v[3];
+  const size_t plain = plainNumbers(a->Value(), v, 3);
+  if (plain == 1) return Vec3(v[0]);
+  if (plain == 3) return {v[0], v[1], v[2]};
   std::string_view w;
   if (wordsIn(a->Value(), &w, 1) == 1) return Vec3(parseNumber(name, w));
   return vec(name);

@@ -558,6 +558,28 @@ TEST(XmlLoader, SingleNumberForScaleAndColours) {
   expectVec(o.transforms.steps[1].v, 1, 2, 3);
 }
 
+// Numbers are read where they lie when they are plain, word by word otherwise: a colour of one
+// or three numbers in any spacing reads the same either way, and anything else gets the
+// word-by-word path's message.
+TEST(XmlLoader, ColoursOfOneOrThreeNumbersAndTheirErrors) {
+  const SceneDesc s = load(inScene("<background color=\" +-1,, 2\t+.5e1 \"/>"));
+  expectColor(s.background, -1, 2, 5);
+  expectColor(load(inScene("<background color=\"\n+0.5 \"/>")).background, 0.5, 0.5, 0.5);
+  const std::string at = "t.xml:2: error: background: attribute 'color'";
+  for (const auto& [value, want] : std::vector<std::pair<std::string, std::string>>{
+           {"1 2", " must be a vector of 3 numbers, got \"1 2\""},
+           {"1 2 3 4", " must be a vector of 3 numbers, got \"1 2 3 4\""},
+           {"", " must be a vector of 3 numbers, got \"\""},
+           {"1.5x 0 0", ": \"1.5x\" is not a number"},
+           {"0 0 0x10", ": \"0x10\" is not a number"},
+           {"+ 1 2", ": \"+\" is not a number"},
+           {"inf 0 0", ": inf is not a finite number"},
+           {"0 nan 0", ": nan is not a finite number"},
+           {"1e400 0 0", ": 1e400 is out of range (at most 1e15 in magnitude)"},
+           {"2e15", ": 2e15 is out of range (at most 1e15 in magnitude)"}})
+    EXPECT_SCENE_ERROR(inScene("<background color=\"" + value + "\"/>"), at + want);
+}
+
 TEST(XmlLoader, TinyNumbersUnderflowToZeroButHugeOnesAreRefused) {
   const SceneDesc s = load(inScene("<sphere center=\"1e-400 5e-324 1e-300\" radius=\"1e15\"/>"));
   const auto& sp = std::get<SphereDesc>(s.objects.at(0).shape);
