@@ -102,9 +102,11 @@ struct Footprint {
   int cells() const { return any ? (i1 - i0 + 1) * (j1 - j0 + 1) : 0; }
 };
 
-Footprint footprint(const RelativeBox& box, int face, int res) {
-  const int a = face / 2, b = (a + 1) % 3, c = (a + 2) % 3;
-  const bool negative = face % 2 != 0;
+template <int face>
+Footprint footprint(const RelativeBox& box, int res) {
+  // The face's axes known when compiled: Vec3's [] is a choice between its fields.
+  constexpr int a = face / 2, b = (a + 1) % 3, c = (a + 2) % 3;
+  constexpr bool negative = face % 2 != 0;
   const double wLo = negative ? -box.hi[a] : box.lo[a], wHi = negative ? -box.lo[a] : box.hi[a];
   Footprint f;
   if (!(wHi > 0)) return f;
@@ -124,6 +126,19 @@ Footprint footprint(const RelativeBox& box, int face, int res) {
   if (u.hi < -1 || u.lo > 1 || v.hi < -1 || v.lo > 1) return f;
   f = {cellOf(u.lo, res), cellOf(u.hi, res), cellOf(v.lo, res), cellOf(v.hi, res), true};
   return f;
+}
+
+// A box's footprints on the six faces; the cells they span together.
+int footprints(const RelativeBox& box, int res, Footprint (&f)[6]) {
+  f[0] = footprint<0>(box, res);
+  f[1] = footprint<1>(box, res);
+  f[2] = footprint<2>(box, res);
+  f[3] = footprint<3>(box, res);
+  f[4] = footprint<4>(box, res);
+  f[5] = footprint<5>(box, res);
+  int cells = 0;
+  for (const Footprint& x : f) cells += x.cells();
+  return cells;
 }
 
 // Cells a side: about two per typical primitive's apparent size (the median over the
@@ -203,13 +218,17 @@ class CellCones {
     });
   }
   int resolution() const { return res_; }
-  // Whether the cone may meet cell (i, j) of `face`. Two cones meet when the angle between
-  // their axes is at most the sum of their half-angles, i.e. when the chord between the
-  // axes is at most 2 sin of half that sum (a well-conditioned test, unlike a dot product).
-  bool meets(const Cone& cone, int face, int i, int j) const {
-    const Cell& cell = cells_[size_t(j) * res_ + i];
+  // A direction in the frame of `face`'s cells: (along the face's axis, u, v).
+  static Vec3 inFaceFrame(const Vec3& d, int face) {
     const int a = face / 2, b = (a + 1) % 3, c = (a + 2) % 3;
-    const Vec3 axis{face % 2 ? -cone.axis[a] : cone.axis[a], cone.axis[b], cone.axis[c]};
+    return {face % 2 ? -d[a] : d[a], d[b], d[c]};
+  }
+  // Whether the cone may meet cell (i, j) of the face where its axis is `axis`
+  // (inFaceFrame). Two cones meet when the angle between their axes is at most the sum of
+  // their half-angles, i.e. when the chord between the axes is at most 2 sin of half that
+  // sum (a well-conditioned test, unlike a dot product).
+  bool meets(const Cone& cone, const Vec3& axis, int i, int j) const {
+    const Cell& cell = cells_[size_t(j) * res_ + i];
     const double cosSum = cell.cosHalf * cone.cosHalf - cell.sinHalf * cone.sinHalf;
     if (cosSum <= 0) return true;  // the half-angles add up to a half-turn or more
     const double sinSum = cell.sinHalf * cone.cosHalf + cell.cosHalf * cone.sinHalf;
@@ -232,9 +251,10 @@ template <class F>
 void forEachCell(const Footprint (&f)[6], const Cone& cone, const CellCones& cones, F&& visit) {
   for (int face = 0; face < 6; ++face) {
     if (!f[face].any) continue;
+    const Vec3 axis = CellCones::inFaceFrame(cone.axis, face);
     for (int j = f[face].j0; j <= f[face].j1; ++j)
       for (int i = f[face].i0; i <= f[face].i1; ++i)
-        if (!cone.any || cones.meets(cone, face, i, j)) visit(face, i, j);
+        if (!cone.any || cones.meets(cone, axis, i, j)) visit(face, i, j);
   }
 }
 
@@ -355,10 +375,12 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
     const RelativeBox box(scene, lights[l]);
     for (;;) {
       uint32_t base = 0;
+      Footprint all[6];
+      footprints(box, b.res_, all);
       for (int face = 0; face < 6; ++face) {
         Footprint f;
         if (box.holdsLight()) f = {0, b.res_ - 1, 0, b.res_ - 1, true};
-        else if (!scene.empty()) f = footprint(box, face, b.res_);
+        else if (!scene.empty()) f = all[face];
         b.windows_[face] = f.any ? Window{f.i0, f.j0, f.i1 - f.i0 + 1, f.j1 - f.j0 + 1, base} : Window{0, 0, 0, 0, base};
         base += uint32_t(f.cells());
       }
@@ -415,8 +437,7 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
         if (occluders[i].box.empty()) continue;
         const RelativeBox box(occluders[i].box, light);
         Footprint f[6];
-        int cellsSeen = 0;
-        for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, res)).cells();
+        const int cellsSeen = footprints(box, res, f);
         if (box.holdsLight() || cellsSeen > kCrowded) {
           part.everywhere.push_back(uint32_t(i));
           continue;
@@ -444,8 +465,7 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
         if (occluders[i].box.empty()) continue;
         const RelativeBox box(occluders[i].box, lights[l]);
         Footprint f[6];
-        int cellsSeen = 0;
-        for (int face = 0; face < 6; ++face) cellsSeen += (f[face] = footprint(box, face, out[l].res_)).cells();
+        const int cellsSeen = footprints(box, out[l].res_, f);
         if (box.holdsLight() || cellsSeen > kCrowded) continue;
         forEachCell(f, coneOf(occluders[i], lights[l]), *conesOf[l], [&](int, int, int) { ++counted[p]; });
       }
