@@ -375,12 +375,10 @@ std::vector<LightBuffer> LightBuffer::buildBatch(std::span<const Vec3> lights, c
     const RelativeBox box(scene, lights[l]);
     for (;;) {
       uint32_t base = 0;
-      Footprint all[6];
-      footprints(box, b.res_, all);
+      Footprint seen[6] = {};
+      if (!box.holdsLight() && !scene.empty()) footprints(box, b.res_, seen);
       for (int face = 0; face < 6; ++face) {
-        Footprint f;
-        if (box.holdsLight()) f = {0, b.res_ - 1, 0, b.res_ - 1, true};
-        else if (!scene.empty()) f = all[face];
+        const Footprint f = box.holdsLight() ? Footprint{0, b.res_ - 1, 0, b.res_ - 1, true} : seen[face];
         b.windows_[face] = f.any ? Window{f.i0, f.j0, f.i1 - f.i0 + 1, f.j1 - f.j0 + 1, base} : Window{0, 0, 0, 0, base};
         base += uint32_t(f.cells());
       }
