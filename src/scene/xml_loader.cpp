@@ -385,7 +385,7 @@ class Loader {
   void element(const XMLElement* e) {
     interrupt::check();  // a million elements take seconds
     noText(e);
-    const std::string name = e->Name();
+    const std::string_view name = e->Name();
     // Read ahead, the checks that depend on earlier elements wait for settle().
     if (name == "camera") {
       if (ahead_) return defer(e, camera(e));
@@ -405,7 +405,7 @@ class Loader {
       scene_.background = color;
     } else if (name == "image") {
       if (ahead_) return defer(e, image(e));
-      if (scene_.image) throw sceneError(locOf(e), name, "may appear only once");
+      if (scene_.image) throw sceneError(locOf(e), std::string(name), "may appear only once");
       scene_.image = image(e);
     } else if (name == "light_source") {
       if (ahead_) return defer(e, light(e));
@@ -582,7 +582,7 @@ class Loader {
     a.done();
     noText(e);
     for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
-      const std::string name = c->Name();
+      const std::string_view name = c->Name();
       if (name != "spotlight" && name != "area_light")
         throw errorAt(c, "unknown element inside <light_source> (expected spotlight or area_light)");
       Attributes b = attrs(c);
@@ -640,7 +640,7 @@ class Loader {
 
   // Reads a pigment, finish or interior into `m`; false when `c` is none of them.
   bool materialPart(const XMLElement* c, MaterialDesc& m, bool& pig, bool& fin, bool& inte) {
-    const std::string name = c->Name();
+    const std::string_view name = c->Name();
     if (name == "pigment") {
       once(c, pig);
       m.pigment = pigment(c);
@@ -746,7 +746,7 @@ class Loader {
 
   // A transform child; false when `c` is not a transform.
   bool transformStep(const XMLElement* c, TransformList& list) {
-    const std::string name = c->Name();
+    const std::string_view name = c->Name();
     TransformStep s{};
     if (name == "scale") s.kind = TransformStep::Kind::Scale;
     else if (name == "rotate") s.kind = TransformStep::Kind::Rotate;
@@ -802,7 +802,7 @@ class Loader {
 
   // Read ahead, a named material's name goes to `use` instead of its copy to the object.
   ObjectDesc object(const XMLElement* e, std::optional<std::string>& use) {
-    const std::string name = e->Name();
+    const std::string_view name = e->Name();
     if (!isObjectName(name))
       throw errorAt(e, "unknown element (expected camera, light_source, material, an object, ...)");
     Attributes a = attrs(e);
@@ -893,7 +893,7 @@ class Loader {
                     std::strcmp(c->Name(), "interior") == 0))
         throw errorAt(c, "the object already uses material '" + (ahead_ ? *use : o.material.name) + "'");
       if (!materialPart(c, o.material, pig, fin, inte))
-        throw errorAt(c, "unknown element inside <" + name + ">");
+        throw errorAt(c, "unknown element inside <" + std::string(name) + ">");
     }
     if (const auto* mesh = std::get_if<MeshDesc>(&o.shape))
       if (mesh->triangles.empty() && mesh->smoothTriangles.empty())
