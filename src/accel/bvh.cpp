@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 #include "accel/packet_rays.h"
 #include "accel/slabs.h"
@@ -419,6 +420,117 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
     return false;
   });
   for (int k = 0; k < count; ++k) {
+    if (owner[k] == kNone) out[k].reset();
+    else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};
+  }
+}
+
+void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, double tMax,
+                        std::optional<ClosestHit>* out, uint64_t& tests) const {
+  alignas(32) double best[kMaxPacket];
+  double hitU[kMaxPacket], hitV[kMaxPacket];
+  int hitPart[kMaxPacket];
+  uint32_t owner[kMaxPacket];
+  for (int k = 0; k < lanes.groups * 4; ++k) {
+    best[k] = (live >> k & 1u) ? tMax : -INFINITY;  // a lane out of `live` hits nothing
+    owner[k] = kNone;
+  }
+  // Tests the rays of `among` against primitive i, four at a time for a sphere or a plane.
+  auto intersect = [&](uint32_t i, uint64_t among) {
+    tests += uint64_t(__builtin_popcountll(among));
+    const PrimitiveRecord& p = items_[i];
+    if (p.kind == PrimitiveRecord::Kind::Other) {
+      for (uint64_t m = among; m != 0; m &= m - 1) {
+        const int k = __builtin_ctzll(m);
+        if (const auto h = intersectItem(i, lanes.ray(k), tMin, best[k])) {
+          best[k] = h->t;
+          hitPart[k] = h->part;
+          hitU[k] = h->u;
+          hitV[k] = h->v;
+          owner[k] = i;
+        }
+      }
+      return;
+    }
+    double t[4];
+    for (int g = 0; g < lanes.groups; ++g) {
+      const unsigned in = unsigned(among >> (4 * g)) & 0xFu;
+      if (in == 0) continue;
+      unsigned hit = (p.kind == PrimitiveRecord::Kind::Sphere
+                          ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)
+                          : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)) &
+                     in;
+      for (; hit != 0; hit &= hit - 1) {
+        const int c = __builtin_ctz(hit), k = 4 * g + c;
+        best[k] = t[c];
+        hitPart[k] = 0;
+        hitU[k] = hitV[k] = 0;
+        owner[k] = i;
+      }
+    }
+  };
+  // The unbounded primitives first, as in traverse().
+  for (uint32_t i = boundedCount_; i < items_.size(); ++i) intersect(i, live);
+  if (!nodes_.empty() && live != 0) {
+    // Each ray's own float slab test, as traverse() makes it: a node's child is entered
+    // when one live ray enters it (the double test's boxes and more, never fewer).
+    alignas(FloatRaySlabs) unsigned char storage[kMaxPacket * sizeof(FloatRaySlabs)];
+    auto* slabs = reinterpret_cast<FloatRaySlabs*>(storage);  // only the live lanes' are made
+    for (uint64_t m = live; m != 0; m &= m - 1) {
+      const int k = __builtin_ctzll(m);
+      new (&slabs[k]) FloatRaySlabs(lanes.ray(k));
+    }
+    const float tMinF = float(tMin);
+    struct Entry {
+      uint32_t index, count;  // a node, or (count > 0) a leaf's primitives
+      float enter;            // the least of the rays' entries into its box
+      uint64_t rays;          // the rays that enter its box (and every box above it)
+    };
+    Entry stack[kStackSize];
+    int top = 0;
+    Entry at{0, 0, tMinF, live};
+    for (;;) {
+      if (at.count > 0) {
+        for (uint32_t i = at.index; i < at.index + at.count; ++i) intersect(i, at.rays);
+      } else {
+        const BvhNode& n = nodes_[at.index];
+        float enter[kBvhWidth];
+        uint64_t entering[kBvhWidth] = {};
+        std::fill(enter, enter + kBvhWidth, INFINITY);
+        unsigned mask = 0;
+        for (uint64_t m = at.rays; m != 0; m &= m - 1) {
+          const int k = __builtin_ctzll(m);
+          float e[kBvhWidth];
+          const unsigned in = hitsNode(n, slabs[k], tMinF, float(best[k]), e);
+          for (unsigned c = in; c != 0; c &= c - 1) {
+            const int slot = __builtin_ctz(c);
+            enter[slot] = std::min(enter[slot], e[slot]);
+            entering[slot] |= uint64_t(1) << k;
+          }
+          mask |= in;
+        }
+        // The children entered, nearest on top of the stack.
+        Entry hit[kBvhWidth];
+        int h = 0;
+        for (; mask != 0; mask &= mask - 1) {
+          const int c = __builtin_ctz(mask);
+          hit[h++] = {n.child[c], n.count[c], enter[c], entering[c]};
+        }
+        for (int i = 1; i < h; ++i)
+          for (int j = i; j > 0 && hit[j - 1].enter < hit[j].enter; --j) std::swap(hit[j - 1], hit[j]);
+        for (int i = 0; i < h; ++i) stack[top++] = hit[i];
+      }
+      // The next stacked child that some ray still enters before its best hit.
+      float farthest = -INFINITY;
+      for (uint64_t m = live; m != 0; m &= m - 1) farthest = std::max(farthest, float(best[__builtin_ctzll(m)]));
+      const float limit = FloatRaySlabs::limit(farthest);
+      while (top > 0 && stack[top - 1].enter > limit) --top;
+      if (top == 0) break;
+      at = stack[--top];
+    }
+  }
+  for (uint64_t m = live; m != 0; m &= m - 1) {
+    const int k = __builtin_ctzll(m);
     if (owner[k] == kNone) out[k].reset();
     else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};
   }

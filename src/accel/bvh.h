@@ -189,6 +189,14 @@ class Bvh {
   // the same point. Gives for every ray the same answer as closest() would.
   void closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
                      uint64_t& tests) const;
+  // closest() for the rays of `rays` with a bit in `live`, each from its own origin (the
+  // reflected or refracted rays of a packet's hits): one walk of the tree for them all,
+  // a node's child entered where one live ray's own slab test enters it, a leaf's spheres
+  // and planes tested four rays at a time. out[k] is set for the live rays only, each to
+  // closest()'s answer (but for a hit at exactly the distance of another, which may be
+  // the other one).
+  void closestSpread(const PacketRays& rays, uint64_t live, double tMin, double tMax,
+                     std::optional<ClosestHit>* out, uint64_t& tests) const;
   // occlusion() for each of `count` (<= kMaxPacket) segments that all end at `apex` (a
   // light): segment k runs from segments[k].origin along its unit direction over
   // (tMin, tMax[k]), with segments[k].origin + dir * (tMax[k] + tMin) = apex.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -81,10 +82,8 @@ class Tracer {
     // caught every tree is cut short, and the image is thrown away.
     if (spawned && interrupt::requested()) return {};
     const double tMin = spawned ? scene_.tol.minDepth : scene_.tol.primaryMinDepth;
-    const auto found = scene_.bvh.closest(ray, tMin, scene_.tol.maxDistance, stats_.intersectionTests);
-    if (!found) return scene_.background;
-    ++stats_.shadingOps;
-    return shade(ray, found->primitive, found->hit, level + 1, weight, inside);
+    return shadeFound(ray, scene_.bvh.closest(ray, tMin, scene_.tol.maxDistance, stats_.intersectionTests), level,
+                      weight, inside);
   }
 
   // The primary rays of a pixel or of a few neighbours, all from the camera: their closest
@@ -176,6 +175,7 @@ class Tracer {
     if constexpr ((E & kShadows) != 0) {
       for (size_t j = 0; j < lights; ++j) resolveShadows(count, j);
     }
+    if constexpr ((E & (kReflection | kTransmission)) != 0) traceSpawnedAhead(rays, count, hitBits, inside);
     for (int k = 0; k < count; ++k) {
       // Every pixel's secondary rays start with an empty shadow cache, as when it is traced
       // alone (shadeFour's lanes use no cache, so a pixel starting inside them resets after).
@@ -213,6 +213,103 @@ class Tracer {
   void setPixelStarts(uint64_t bits) { pixelStarts_ = bits; }
 
  private:
+  // The rays that shading a packet's hits will spawn at level 1, with their closest hits
+  // found ahead together (traceSpawnedAhead): a bit in `live` per packet ray that has one.
+  struct SpawnedAhead {
+    PacketRays rays;
+    uint64_t live = 0;
+    std::optional<ClosestHit> hits[kMaxPacket];
+  };
+
+  Color shadeFound(const Ray& ray, const std::optional<ClosestHit>& found, int level, double weight,
+                   const InteriorList& inside) {
+    if (!found) return scene_.background;
+    ++stats_.shadingOps;
+    return shade(ray, found->primitive, found->hit, level + 1, weight, inside);
+  }
+
+  // trace() of a ray spawned at the hit of packet ray `lane` (-1: of no packet ray), with
+  // the hit found ahead when `ahead` holds this very ray, bit for bit.
+  Color traceSpawned(const Ray& ray, int level, double weight, const InteriorList& inside, int lane,
+                     const SpawnedAhead& ahead) {
+    if (lane < 0 || !(ahead.live >> lane & 1u) || !sameBits(ahead.rays.ray(lane), ray))
+      return trace(ray, level, weight, inside, true);
+    if (interrupt::requested()) return {};
+    return shadeFound(ray, ahead.hits[lane], level, weight, inside);
+  }
+  static bool sameBits(const Ray& a, const Ray& b) {
+    const auto bits = [](double x) { return std::bit_cast<uint64_t>(x); };
+    for (int i = 0; i < 3; ++i)
+      if (bits(a.origin[i]) != bits(b.origin[i]) || bits(a.dir[i]) != bits(b.dir[i])) return false;
+    return true;
+  }
+
+  // How light passes a surface that lets it through (transmit): straight on when the
+  // interiors' iors match, back as a mirror ray in total internal reflection, else bent.
+  enum class Passage { Straight, Reflected, Bent };
+  Passage passage(const Ray& ray, const SurfacePoint& sp, const Vec3& n, double eta, Ray& out) const {
+    if (std::fabs(eta - 1.0) < kPovEpsilon) {
+      out = spawnRay(sp, n, ray.dir, scene_.tol.minDepth);
+      return Passage::Straight;
+    }
+    const double c1 = -dot(ray.dir, n);
+    const double k = 1.0 + eta * eta * (c1 * c1 - 1.0);
+    if (k < 0) {
+      out = spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth);
+      return Passage::Reflected;
+    }
+    // Heckbert's formula; unit length in exact arithmetic and, as in POV-Ray, not renormalised.
+    const Vec3 dir = ray.dir * eta + n * (eta * c1 - std::sqrt(k));
+    out = spawnRay(sp, n, dir, scene_.tol.minDepth);
+    return Passage::Bent;
+  }
+
+  // The level-1 rays that shading the packet's hits may spawn (a mirror ray where the
+  // surface reflects or bends light back, the ray through it where it may let light
+  // through), each made as shadeAt and transmit make it, and their closest hits found as
+  // two packets of rays from their own origins: neighbouring rays meet the same surface,
+  // so the rays they spawn walk much the same part of the tree. A ray that shading does
+  // not trace after all (a weight below the bailout) costs only its share of the walk.
+  void traceSpawnedAhead(const Ray* rays, int count, uint64_t hitBits, const InteriorList& inside) {
+    mirrorAhead_.live = throughAhead_.live = 0;
+    if (scene_.globals.maxTraceLevel <= 1) return;
+    for (uint64_t b = hitBits; b != 0; b &= b - 1) {
+      const int k = __builtin_ctzll(b);
+      const uint32_t prim = hits_[k]->primitive;
+      const Material& m = scene_.materials[scene_.bvh.material(prim)];
+      bool reflective = false, see = false;
+      if constexpr ((E & kReflection) != 0) reflective = scene_.materials.surface(m).reflective;
+      if constexpr ((E & kTransmission) != 0) see = !m.opaque;
+      if (reflective) {
+        const Ray r = spawnRay(points_[k], normals_[k], mirror(rays[k].dir, normals_[k]), scene_.tol.minDepth);
+        mirrorAhead_.rays.set(k, r.origin, r.dir);
+        mirrorAhead_.live |= uint64_t(1) << k;
+      }
+      if (see) {
+        Ray r;
+        const double eta = refractionEta(scene_.bvh.object(prim), inside);
+        SpawnedAhead& a = passage(rays[k], points_[k], normals_[k], eta, r) == Passage::Reflected ? mirrorAhead_
+                                                                                                  : throughAhead_;
+        a.rays.set(k, r.origin, r.dir);
+        a.live |= uint64_t(1) << k;
+      }
+    }
+    for (SpawnedAhead* a : {&mirrorAhead_, &throughAhead_}) {
+      // A lone ray walks faster alone.
+      if (__builtin_popcountll(a->live) < kMinSpread) {
+        a->live = 0;
+        continue;
+      }
+      a->rays.count = count;
+      a->rays.groups = (count + 3) / 4;
+      for (int k = 0; k < 4 * a->rays.groups; ++k)
+        if (!(a->live >> k & 1u)) a->rays.set(k, Vec3(NAN), Vec3(NAN));
+      scene_.bvh.closestSpread(a->rays, a->live, scene_.tol.minDepth, scene_.tol.maxDistance, a->hits,
+                               stats_.intersectionTests);
+    }
+  }
+  static constexpr int kMinSpread = 2;
+
   // `level` is the level this hit runs at: 1 for the primary ray's hit.
   Color shade(const Ray& ray, uint32_t prim, const ShapeHit& hit, int level, double weight,
               const InteriorList& inside) {
@@ -268,7 +365,7 @@ class Tracer {
     }
     if constexpr ((E & kTransmission) != 0) {
       if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
-        result += transmit(ray, hit.t, object, s, pig, rho, sp, n, level, weight, inside, totalInternal);
+        result += transmit(ray, hit.t, object, s, pig, rho, sp, n, level, weight, inside, totalInternal, known);
     }
     if constexpr ((E & kReflection) != 0) {
       if (s.reflective && !totalInternal) {
@@ -277,7 +374,8 @@ class Tracer {
                                                                                f.reflection.min.maxComponent())));
         if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
           ++stats_.reflectedRays;
-          Color c = trace(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside, true);
+          Color c = traceSpawned(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside, known,
+                                 mirrorAhead_);
           if (f.reflection.exponent != 1) {
             // Reflect_Exp is the float 1/exponent, raised to on the float colour as it is: a
             // negative channel gives pow()'s answer (NaN unless the power is whole), not 0.
@@ -582,7 +680,7 @@ class Tracer {
   // POV-Ray fades only that transmitted share, not the surface's own shading.
   Color transmit(const Ray& ray, double depth, uint32_t object, const Surface& s, const FilterColor& pig,
                  const Color& rho, const SurfacePoint& sp, const Vec3& n, int level, double weight,
-                 const InteriorList& inside, bool& totalInternal) {
+                 const InteriorList& inside, bool& totalInternal, int lane) {
     Color filter = pig.rgb * pig.filter + Color(pig.transmit);
     if (s.finish.conserveEnergy)
       filter *= Color(std::min(1.0, 1.0 - rho.r), std::min(1.0, 1.0 - rho.g), std::min(1.0, 1.0 - rho.b));
@@ -604,24 +702,22 @@ class Tracer {
     // A ray at the last level goes no further, bent or not: POV-Ray's TraceRay checks the
     // level on entry for a continued ray too, it only does not count one more.
     if (level >= scene_.globals.maxTraceLevel) return {};
-    if (std::fabs(eta - 1.0) < kPovEpsilon) {
-      // Straight through: POV-Ray does not spend a trace level on it.
-      ++stats_.transmittedRays;
-      return fade * filter * trace(spawnRay(sp, n, ray.dir, scene_.tol.minDepth), level - 1, w, next, true);
-    }
-    const double c1 = -dot(ray.dir, n);
-    const double k = 1.0 + eta * eta * (c1 * c1 - 1.0);
-    if (k < 0) {
-      // Total internal reflection: the transmitted share comes back as a mirror ray,
-      // not tinted by the filter, and replaces the ordinary reflection.
-      totalInternal = true;
-      ++stats_.reflectedRays;
-      return fade * trace(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside, true);
+    Ray passing;
+    switch (passage(ray, sp, n, eta, passing)) {
+      case Passage::Straight:
+        // POV-Ray does not spend a trace level on it.
+        ++stats_.transmittedRays;
+        return fade * filter * traceSpawned(passing, level - 1, w, next, lane, throughAhead_);
+      case Passage::Reflected:
+        // Total internal reflection: the transmitted share comes back as a mirror ray,
+        // not tinted by the filter, and replaces the ordinary reflection.
+        totalInternal = true;
+        ++stats_.reflectedRays;
+        return fade * traceSpawned(passing, level, w, inside, lane, mirrorAhead_);
+      case Passage::Bent: break;
     }
     ++stats_.refractedRays;
-    // Heckbert's formula; unit length in exact arithmetic and, as in POV-Ray, not renormalised.
-    const Vec3 dir = ray.dir * eta + n * (eta * c1 - std::sqrt(k));
-    return fade * filter * trace(spawnRay(sp, n, dir, scene_.tol.minDepth), level, w, next, true);
+    return fade * filter * traceSpawned(passing, level, w, next, lane, throughAhead_);
   }
 
   // The shadow segments toward light j of the packet's hits, those that lightContribution
@@ -1156,6 +1252,7 @@ class Tracer {
   // The see-through samples' nearest hits (their walks' first steps), as traceSamples found them.
   std::vector<ClosestHit> areaNearest_;
   PacketNearest nearest_;  // traceSamples' query's notes
+  SpawnedAhead mirrorAhead_, throughAhead_;  // traceSpawnedAhead's
 };
 
 }  // namespace pvrt

@@ -489,6 +489,52 @@ TEST(BvhPacket, ClosestMatchesSingleRays) {
   }
 }
 
+// Rays from their own origins (a packet's reflected rays) get every live ray exactly the
+// answer closest() gives it alone, among spheres, boxes (tested ray by ray) and a plane,
+// whether the rays are nearly parallel or scattered; the lanes left out are not touched.
+TEST(BvhPacket, SpreadClosestMatchesSingleRays) {
+  SceneMaker gen(37);
+  auto prims = gen.spheres(400, 8, 0.05, 0.8);
+  for (uint32_t i = 0; i < 60; ++i) {
+    const Vec3 c = gen.point(8);
+    prims.push_back(make(BoxShape{c, c + Vec3(0.3, 0.5, 0.2)}, 5000 + i));
+  }
+  prims.push_back(make(PlaneShape{normalize(Vec3{0.1, 1, 0}), -9}, 9999));
+  const Bvh bvh(prims);
+  int hits = 0, misses = 0;
+  for (int packet = 0; packet < 300; ++packet) {
+    const Vec3 centre = gen.point(10), axis = gen.direction();
+    const double spread = packet % 3 == 0 ? 2.0 : packet % 3 == 1 ? 0.01 : 1e-6;
+    const double apart = packet % 2 == 0 ? 0.05 : 3.0;  // how far apart the origins are
+    const int count = 1 + packet % kMaxPacket;
+    const uint64_t all = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
+    const uint64_t live = packet % 4 == 0 ? all & 0x5555555555555555u : all;
+    PacketRays rays;
+    for (int k = 0; k < count; ++k)
+      rays.set(k, centre + gen.direction() * apart, normalize(axis + gen.direction() * spread));
+    rays.finish(count);
+    std::vector<std::optional<ClosestHit>> got(kMaxPacket, ClosestHit{ShapeHit{-1, 0, 0, 0}, 12345});
+    uint64_t tests = 0;
+    bvh.closestSpread(rays, live, 1e-4, 1e7, got.data(), tests);
+    for (int k = 0; k < count; ++k) {
+      if (!(live >> k & 1u)) {
+        ASSERT_TRUE(got[size_t(k)] && got[size_t(k)]->primitive == 12345) << "lane " << k << " was written";
+        continue;
+      }
+      const auto want = bvh.closest(rays.ray(k), 1e-4, 1e7, tests);
+      ASSERT_EQ(want.has_value(), got[size_t(k)].has_value()) << "packet " << packet << " ray " << k;
+      if (want) {
+        EXPECT_EQ(want->hit.t, got[size_t(k)]->hit.t);
+        EXPECT_EQ(want->hit.part, got[size_t(k)]->hit.part);
+        EXPECT_EQ(want->primitive, got[size_t(k)]->primitive);
+      }
+      (want ? hits : misses)++;
+    }
+  }
+  EXPECT_GT(hits, 1000);  // both answers are well exercised
+  EXPECT_GT(misses, 1000);
+}
+
 // How many segments of the packets checked below got each answer.
 struct Answers {
   int blocked = 0, clear = 0, transparent = 0;
