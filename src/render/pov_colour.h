@@ -43,10 +43,19 @@ inline Color toColor(const FloatColour& c) {
   return {d[0], d[1], d[2]};
 }
 inline FloatColour operator+(const FloatColour& a, const FloatColour& b) { return FloatColour(_mm_add_ps(a.v, b.v)); }
+inline FloatColour operator-(const FloatColour& a, const FloatColour& b) { return FloatColour(_mm_sub_ps(a.v, b.v)); }
 inline FloatColour operator*(const FloatColour& a, const FloatColour& b) { return FloatColour(_mm_mul_ps(a.v, b.v)); }
 // RGBColour * DBL: each product in double, then rounded.
 inline FloatColour scaled(const WideColour& c, double k) {
   return FloatColour(_mm256_cvtpd_ps(_mm256_mul_pd(c.v, _mm256_set1_pd(k))));
+}
+// RGBColour / DBL: each quotient in double, then rounded.
+inline FloatColour divided(const FloatColour& c, double k) {
+  return FloatColour(_mm256_cvtpd_ps(_mm256_div_pd(_mm256_cvtps_pd(c.v), _mm256_set1_pd(k))));
+}
+// Each channel times its own double factor (RGBColour::red() *= DBL), then rounded.
+inline FloatColour scaled(const FloatColour& c, const Color& k) {
+  return FloatColour(_mm256_cvtpd_ps(_mm256_mul_pd(_mm256_cvtps_pd(c.v), _mm256_setr_pd(k.r, k.g, k.b, 0))));
 }
 
 #else
@@ -61,8 +70,15 @@ inline FloatColour rounded(const Color& c) { return {float(c.r), float(c.g), flo
 inline WideColour widened(const FloatColour& c) { return {c.r, c.g, c.b}; }
 inline Color toColor(const FloatColour& c) { return {c.r, c.g, c.b}; }
 inline FloatColour operator+(const FloatColour& a, const FloatColour& b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
+inline FloatColour operator-(const FloatColour& a, const FloatColour& b) { return {a.r - b.r, a.g - b.g, a.b - b.b}; }
 inline FloatColour operator*(const FloatColour& a, const FloatColour& b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
 inline FloatColour scaled(const WideColour& c, double k) { return {float(c.r * k), float(c.g * k), float(c.b * k)}; }
+inline FloatColour divided(const FloatColour& c, double k) {
+  return {float(double(c.r) / k), float(double(c.g) / k), float(double(c.b) / k)};
+}
+inline FloatColour scaled(const FloatColour& c, const Color& k) {
+  return {float(double(c.r) * k.r), float(double(c.g) * k.g), float(double(c.b) * k.b)};
+}
 
 #endif
 

@@ -1,5 +1,6 @@
-// POV-Ray 3.7's finish formulas (shared/povray-semantics.md section 3), as small pure
-// functions so they can be tested one by one.
+// POV-Ray 3.7's highlight formulas (shared/povray-semantics.md section 3), as small pure
+// functions so they can be tested one by one; the reflectivity, filter and fade of lit rays are
+// POV-Ray's float colour operations (render/pov_secondary.h).
 #pragma once
 
 #include <algorithm>
@@ -11,9 +12,6 @@
 #include "scene/scene_desc.h"
 
 namespace pvrt::shading {
-
-// POV-Ray's greyscale weights for transmitted light (source/base/types.h).
-inline double grey(const Color& c) { return 0.297 * c.r + 0.589 * c.g + 0.114 * c.b; }
 
 // Fresnel-like factor POV-Ray uses to tint metallic highlights and reflections;
 // `cosAngle` is the cosine between the normal and the light or view direction.
@@ -49,35 +47,8 @@ inline double specular(const FinishDesc& f, double exponent, const Vec3& d, cons
   return f.specular * std::pow(c, exponent);
 }
 
-// Fresnel reflectance for relative index n = n_to / n_from and cos of incidence.
-inline double fresnel(double n, double cosTheta) {
-  const double g2 = n * n + cosTheta * cosTheta - 1.0;
-  if (g2 <= 0) return 1.0;
-  const double g = std::sqrt(g2);
-  const double a = (g - cosTheta) / (g + cosTheta);
-  const double b = (cosTheta * (g + cosTheta) - 1.0) / (cosTheta * (g - cosTheta) + 1.0);
-  return std::clamp(0.5 * a * a * (1.0 + b * b), 0.0, 1.0);
-}
-
-// Reflectivity at incidence cosTheta (ray-facing normal). `relIor` is the object's ior
-// relative to the medium the ray comes from (only used with fresnel).
-inline Color reflectivity(const ReflectionDesc& r, double cosTheta, double relIor,
-                          const Color& pigment) {
-  Color rho;
-  if (r.fresnel) {
-    const double f = fresnel(relIor, cosTheta);
-    rho = r.max * f + r.min * (1.0 - f);
-  } else if (r.min == r.max) {
-    rho = r.min;
-  } else {
-    const double s = std::pow(1.0 - cosTheta, r.falloff);
-    rho = r.max * s + r.min * (1.0 - s);
-  }
-  if (r.metallic != 0) rho *= metallicTint(r.metallic, metallicFresnel(cosTheta), pigment);
-  return rho;
-}
-
-// Interior fade after travelling `d` inside the object.
+// Interior fade after travelling `d` inside the object, in double: the shadow rays' (their
+// light is still multiplied in double; render/pov_secondary.h has the float form of lit rays).
 inline Color interiorFade(const InteriorDesc& in, double d) {
   if (in.fadePower >= 1000) {
     const double k = d / in.fadeDistance;

@@ -16,6 +16,7 @@
 #include "render/effects.h"
 #include "render/scene.h"
 #include "render/pov_colour.h"
+#include "render/pov_secondary.h"
 #include "render/shading.h"
 #include "render/spawn.h"
 #include "render/stats.h"
@@ -354,39 +355,45 @@ class Tracer {
       lit = lit + lightContribution(scene_.lights[j], s, pig, pigment, alpha, ray, sp, n, inside,
                                     known >= 0 ? &kl : nullptr);
     }
-    Color result = povcolour::toColor(lit);
     pointCells_ = false;
 
+    // What the surface passes on is added to its own light in POV-Ray's float colours
+    // (render/pov_secondary.h): the transmitted share first, then the reflected one.
+    povcolour::FloatColour result = lit;
     const double cosI = -dot(ray.dir, n);
     bool totalInternal = false;
-    Color rho;
+    povcolour::Reflectivity rho{};
     if constexpr ((E & kReflection) != 0) {
-      if (s.reflective) rho = shading::reflectivity(f.reflection, cosI, fresnelIor(object, inside), pig.rgb);
+      if (s.reflective) {
+        rho = povcolour::reflectivity(f.reflection, cosI, fresnelIor(object, inside));
+        if (f.reflection.metallic != 0)
+          rho.colour = povcolour::metallicReflection(rho.colour, f.reflection.metallic, cosI,
+                                                     povcolour::toColor(povcolour::rounded(pig.rgb)));
+      }
     }
     if constexpr ((E & kTransmission) != 0) {
       if (!m.opaque && (pig.filter != 0 || pig.transmit != 0))
-        result += transmit(ray, hit.t, object, s, pig, rho, sp, n, level, weight, inside, totalInternal, known);
+        result =
+            result + transmit(ray, hit.t, object, s, pig, rho.colour, sp, n, level, weight, inside, totalInternal, known);
     }
     if constexpr ((E & kReflection) != 0) {
-      if (s.reflective && !totalInternal) {
-        const double w = rayWeight(weight * (f.reflection.fresnel ? rho.maxComponent()
-                                                                    : std::max(f.reflection.max.maxComponent(),
-                                                                               f.reflection.min.maxComponent())));
+      const Color reflec = povcolour::toColor(rho.colour);
+      if (s.reflective && !totalInternal && !reflec.isBlack()) {
+        const double w = rayWeight(weight * rho.weightFactor);
         if (level < scene_.globals.maxTraceLevel && w >= scene_.globals.adcBailout) {
           ++stats_.reflectedRays;
-          Color c = traceSpawned(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside, known,
-                                 mirrorAhead_);
-          if (f.reflection.exponent != 1) {
-            // Reflect_Exp is the float 1/exponent, raised to on the float colour as it is: a
-            // negative channel gives pow()'s answer (NaN unless the power is whole), not 0.
-            const float e = float(1.0 / f.reflection.exponent);
-            c = {std::pow(float(c.r), e), std::pow(float(c.g), e), std::pow(float(c.b), e)};
-          }
-          result += rho * c;
+          const Color c = traceSpawned(spawnRay(sp, n, mirror(ray.dir, n), scene_.tol.minDepth), level, w, inside,
+                                       known, mirrorAhead_);
+          povcolour::FloatColour reflected = povcolour::rounded(c);
+          // Reflect_Exp is the float 1/exponent, raised to on the float colour as it is: a
+          // negative channel gives pow()'s answer (NaN unless the power is whole), not 0.
+          const float e = float(1.0 / f.reflection.exponent);
+          if (e != 1.0f) reflected = {std::pow(float(c.r), e), std::pow(float(c.g), e), std::pow(float(c.b), e)};
+          result = result + rho.colour * reflected;
         }
       }
     }
-    return result;
+    return povcolour::toColor(result);
   }
 
   // tracePacket's per-hit set-up (hit point, normal, shadow origin) for packet rays k0 ..
@@ -678,24 +685,27 @@ class Tracer {
 
   // Light leaving an object through this surface has crossed its interior for `depth`;
   // POV-Ray fades only that transmitted share, not the surface's own shading.
-  Color transmit(const Ray& ray, double depth, uint32_t object, const Surface& s, const FilterColor& pig,
-                 const Color& rho, const SurfacePoint& sp, const Vec3& n, int level, double weight,
-                 const InteriorList& inside, bool& totalInternal, int lane) {
-    Color filter = pig.rgb * pig.filter + Color(pig.transmit);
-    if (s.finish.conserveEnergy)
-      filter *= Color(std::min(1.0, 1.0 - rho.r), std::min(1.0, 1.0 - rho.g), std::min(1.0, 1.0 - rho.b));
-    const double tau = std::min(1.0, std::fabs(shading::grey(filter)));
+  // In POV-Ray's float colours (ComputeLightedTexture): fade x transmitted x filter.
+  povcolour::FloatColour transmit(const Ray& ray, double depth, uint32_t object, const Surface& s,
+                                  const FilterColor& pig, const povcolour::FloatColour& rho, const SurfacePoint& sp,
+                                  const Vec3& n, int level, double weight, const InteriorList& inside,
+                                  bool& totalInternal, int lane) {
+    povcolour::FloatColour filter = povcolour::transmittedFilter(pig);
+    if (s.finish.conserveEnergy) filter = povcolour::conserved(filter, rho);
+    const double tau = std::min(1.0, std::fabs(povcolour::greyscale(filter)));
     if (tau <= scene_.globals.adcBailout) return {};
-    const double w = rayWeight(weight * std::max({std::fabs(filter.r), std::fabs(filter.g), std::fabs(filter.b)}));
+    const Color wideFilter = povcolour::toColor(filter);
+    const double w =
+        rayWeight(weight * std::max({std::fabs(wideFilter.r), std::fabs(wideFilter.g), std::fabs(wideFilter.b)}));
     if (w < scene_.globals.adcBailout) return {};
 
     InteriorList next = inside;
     const int at = next.find(object);
     if (at >= 0) next.remove(at); else next.push(object);
-    Color fade(1.0);
+    povcolour::FloatColour fade{1.0f, 1.0f, 1.0f};
     if (at >= 0) {
       const InteriorDesc& in = s.interior;
-      if (std::fabs(in.fadeDistance) > kPovEpsilon) fade = shading::interiorFade(in, depth);
+      if (std::fabs(in.fadeDistance) > kPovEpsilon) fade = povcolour::interiorFade(in, depth);
     }
 
     const double eta = refractionEta(object, inside);
@@ -704,20 +714,25 @@ class Tracer {
     if (level >= scene_.globals.maxTraceLevel) return {};
     Ray passing;
     switch (passage(ray, sp, n, eta, passing)) {
-      case Passage::Straight:
+      case Passage::Straight: {
         // POV-Ray does not spend a trace level on it.
         ++stats_.transmittedRays;
-        return fade * filter * traceSpawned(passing, level - 1, w, next, lane, throughAhead_);
-      case Passage::Reflected:
+        const Color c = traceSpawned(passing, level - 1, w, next, lane, throughAhead_);
+        return fade * povcolour::rounded(c) * filter;
+      }
+      case Passage::Reflected: {
         // Total internal reflection: the transmitted share comes back as a mirror ray,
         // not tinted by the filter, and replaces the ordinary reflection.
         totalInternal = true;
         ++stats_.reflectedRays;
-        return fade * traceSpawned(passing, level, w, inside, lane, mirrorAhead_);
+        const Color c = traceSpawned(passing, level, w, inside, lane, mirrorAhead_);
+        return fade * povcolour::rounded(c);
+      }
       case Passage::Bent: break;
     }
     ++stats_.refractedRays;
-    return fade * filter * traceSpawned(passing, level, w, next, lane, throughAhead_);
+    const Color c = traceSpawned(passing, level, w, next, lane, throughAhead_);
+    return fade * povcolour::rounded(c) * filter;
   }
 
   // The shadow segments toward light j of the packet's hits, those that lightContribution
