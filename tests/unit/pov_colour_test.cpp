@@ -6,24 +6,12 @@
 
 #include <random>
 
+#include "float_channels.h"
+
 #include "render/pov_colour.h"
 
 namespace pvrt::povcolour {
 namespace {
-
-float roundedOnce(double v) {
-  volatile float f = float(v);
-  return f;
-}
-// RGBColour * DBL, one channel: the float widened, times k in double, rounded.
-float scaledChannel(double c, double k) { return roundedOnce(double(roundedOnce(c)) * k); }
-
-void expectChannels(const FloatColour& got, float r, float g, float b) {
-  const Color c = toColor(got);
-  EXPECT_EQ(c.r, double(r));
-  EXPECT_EQ(c.g, double(g));
-  EXPECT_EQ(c.b, double(b));
-}
 
 Color randomColour(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-0.5, 2.0);
