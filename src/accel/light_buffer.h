@@ -41,9 +41,11 @@ class LightBuffer {
     double radius = INFINITY;  // no ball
   };
 
+  // (In this order, so that on a little-endian machine an entry's 8 bytes read as one integer
+  // order the entries by distance, then by primitive: the build sorts millions of them.)
   struct Entry {
-    float near;          // the distance from the light to the primitive's box, rounded down
     uint32_t primitive;  // index into the BVH's primitives
+    float near;          // the distance from the light to the primitive's box, rounded down
   };
 
   LightBuffer() = default;

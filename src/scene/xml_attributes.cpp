@@ -61,7 +61,7 @@ size_t distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::string attr(const char* name) { return "attribute '" + std::string(name) + "'"; }
+std::string attr(std::string_view name) { return "attribute '" + std::string(name) + "'"; }
 
 // a == b, for attribute names (a few letters): compared here rather than by a call, since an
 // element is asked about a dozen names and most differ from a given one in length.
@@ -176,15 +176,18 @@ Attributes::Attributes(const tinyxml2::XMLElement* e, FileName file,
 
 SourceLoc Attributes::loc() const { return {file_, e_->GetLineNum() + lineOffset_}; }
 Error Attributes::error(const std::string& what) const { return sceneError(loc(), printable(e_->Name()), what); }
-Error Attributes::missing(const char* name) const {
+Error Attributes::missing(std::string_view name) const {
   return error("missing required attribute '" + std::string(name) + "'");
 }
-std::string Attributes::raw(const char* name) const { return e_->Attribute(name); }
+std::string Attributes::raw(std::string_view name) const {
+  for (int i = 0; i < count_; ++i)
+    if (sameName({named_[size_t(i)].name, named_[size_t(i)].size}, name)) return named_[size_t(i)].attribute->Value();
+  return {};
+}
 
-const tinyxml2::XMLAttribute* Attributes::find(const char* name) {
-  const std::string_view wanted = name;
+const tinyxml2::XMLAttribute* Attributes::find(std::string_view name) {
   for (int i = 0; i < count_; ++i) {
-    if (sameName({named_[size_t(i)].name, named_[size_t(i)].size}, wanted)) {
+    if (sameName({named_[size_t(i)].name, named_[size_t(i)].size}, name)) {
       used_ |= uint64_t(1) << i;
       return named_[size_t(i)].attribute;
     }
@@ -192,9 +195,9 @@ const tinyxml2::XMLAttribute* Attributes::find(const char* name) {
   return nullptr;
 }
 
-bool Attributes::has(const char* name) { return find(name) != nullptr; }
+bool Attributes::has(std::string_view name) { return find(name) != nullptr; }
 
-void Attributes::numbers(const char* name, double* out, size_t count, const char* what) {
+void Attributes::numbers(std::string_view name, double* out, size_t count, const char* what) {
   const tinyxml2::XMLAttribute* a = find(name);
   if (!a) throw missing(name);
   if (plainNumbers(a->Value(), out, count) == count) return;
@@ -203,26 +206,26 @@ void Attributes::numbers(const char* name, double* out, size_t count, const char
   for (size_t i = 0; i < count; ++i) out[i] = parseNumber(name, w[i]);
 }
 
-double Attributes::number(const char* name) {
+double Attributes::number(std::string_view name) {
   double v;
   numbers(name, &v, 1, " must be one number, got ");
   return v;
 }
 
-double Attributes::nonNegative(const char* name, double fallback) {
+double Attributes::nonNegative(std::string_view name, double fallback) {
   const double v = number(name, fallback);
   if (v < 0) throw error(attr(name) + " must not be negative, got " + printable(raw(name)));
   return v;
 }
 
-double Attributes::positive(const char* name, std::optional<double> fallback) {
+double Attributes::positive(std::string_view name, std::optional<double> fallback) {
   if (!fallback && !has(name)) throw missing(name);
   const double v = number(name, fallback.value_or(0));
   if (!(v > 0)) throw error(attr(name) + " must be positive, got " + printable(raw(name)));
   return v;
 }
 
-int Attributes::integer(const char* name, int fallback, int lo, int hi) {
+int Attributes::integer(std::string_view name, int fallback, int lo, int hi) {
   if (!has(name)) return fallback;
   const std::string text = raw(name);
   long long v = 0;
@@ -235,13 +238,13 @@ int Attributes::integer(const char* name, int fallback, int lo, int hi) {
   return int(v);
 }
 
-Vec3 Attributes::vec(const char* name) {
+Vec3 Attributes::vec(std::string_view name) {
   double v[3];
   numbers(name, v, 3, " must be a vector of 3 numbers, got ");
   return {v[0], v[1], v[2]};
 }
 
-Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
+Vec3 Attributes::nonZeroVec(std::string_view name, std::optional<Vec3> fallback) {
   const Vec3 v = fallback ? vec(name, *fallback) : vec(name);
   if (v == Vec3{}) throw error(attr(name) + " must not be the zero vector");
   if (std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}) < kMinLength)
@@ -250,7 +253,7 @@ Vec3 Attributes::nonZeroVec(const char* name, std::optional<Vec3> fallback) {
   return v;
 }
 
-Vec3 Attributes::vecOrScalar(const char* name) {
+Vec3 Attributes::vecOrScalar(std::string_view name) {
   const tinyxml2::XMLAttribute* a = find(name);
   if (!a) throw missing(name);
   double v[3];
@@ -262,13 +265,13 @@ Vec3 Attributes::vecOrScalar(const char* name) {
   return vec(name);
 }
 
-Color Attributes::color(const char* name, Color fallback) {
+Color Attributes::color(std::string_view name, Color fallback) {
   if (!has(name)) return fallback;
   const Vec3 v = vecOrScalar(name);
   return {v.x, v.y, v.z};
 }
 
-bool Attributes::boolean(const char* name, bool fallback) {
+bool Attributes::boolean(std::string_view name, bool fallback) {
   if (!has(name)) return fallback;
   const std::string v = raw(name);
   if (v == "true") return true;
@@ -276,7 +279,7 @@ bool Attributes::boolean(const char* name, bool fallback) {
   throw error(attr(name) + " must be true or false, got " + quoted(name));
 }
 
-std::string Attributes::text(const char* name) {
+std::string Attributes::text(std::string_view name) {
   if (!has(name)) throw missing(name);
   return raw(name);
 }
@@ -286,7 +289,7 @@ void Attributes::done() const {
     if (!(used_ >> i & 1u)) throw error("unknown attribute '" + printable({named_[size_t(i)].name, named_[size_t(i)].size}) + "'");
 }
 
-double Attributes::parseNumber(const char* name, std::string_view w) const {
+double Attributes::parseNumber(std::string_view name, std::string_view w) const {
   double v = 0;
   const char* begin = w.data();
   if (*begin == '+') ++begin;

@@ -47,34 +47,34 @@ class Attributes {
 
   SourceLoc loc() const;
   Error error(const std::string& what) const;
-  Error missing(const char* name) const;
+  Error missing(std::string_view name) const;
 
-  bool has(const char* name);
-  double number(const char* name);
-  double number(const char* name, double fallback) { return has(name) ? number(name) : fallback; }
-  double nonNegative(const char* name, double fallback);
-  double positive(const char* name, std::optional<double> fallback = std::nullopt);
-  int integer(const char* name, int fallback, int lo, int hi);
-  Vec3 vec(const char* name);
-  Vec3 vec(const char* name, Vec3 fallback) { return has(name) ? vec(name) : fallback; }
-  Vec3 nonZeroVec(const char* name, std::optional<Vec3> fallback = std::nullopt);
-  Vec3 vecOrScalar(const char* name);  // "x y z", or one number for all three
-  Color color(const char* name, Color fallback);
-  bool boolean(const char* name, bool fallback);
-  std::string text(const char* name);
+  bool has(std::string_view name);
+  double number(std::string_view name);
+  double number(std::string_view name, double fallback) { return has(name) ? number(name) : fallback; }
+  double nonNegative(std::string_view name, double fallback);
+  double positive(std::string_view name, std::optional<double> fallback = std::nullopt);
+  int integer(std::string_view name, int fallback, int lo, int hi);
+  Vec3 vec(std::string_view name);
+  Vec3 vec(std::string_view name, Vec3 fallback) { return has(name) ? vec(name) : fallback; }
+  Vec3 nonZeroVec(std::string_view name, std::optional<Vec3> fallback = std::nullopt);
+  Vec3 vecOrScalar(std::string_view name);  // "x y z", or one number for all three
+  Color color(std::string_view name, Color fallback);
+  bool boolean(std::string_view name, bool fallback);
+  std::string text(std::string_view name);
   // One word of attribute `name` as a number: finite and within kMaxSceneNumber.
-  double parseNumber(const char* name, std::string_view word) const;
+  double parseNumber(std::string_view name, std::string_view word) const;
 
   // Call after reading: an attribute present but not read is unknown in this context.
   void done() const;
 
  private:
   // The attribute `name`, marked as asked about; nullptr when the element has none.
-  const tinyxml2::XMLAttribute* find(const char* name);
+  const tinyxml2::XMLAttribute* find(std::string_view name);
   // The attribute `name` as `count` numbers (a vector's, or a number's), or refused.
-  void numbers(const char* name, double* out, size_t count, const char* what);
-  std::string raw(const char* name) const;
-  std::string quoted(const char* name) const { return "\"" + printable(raw(name)) + "\""; }
+  void numbers(std::string_view name, double* out, size_t count, const char* what);
+  std::string raw(std::string_view name) const;
+  std::string quoted(std::string_view name) const { return "\"" + printable(raw(name)) + "\""; }
 
   // An attribute of the element with its name, read once: an element is asked about a dozen
   // names, and a big scene has millions of elements.

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +16,10 @@
 #include <cstring>
 #include <utility>
 #include <vector>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 #include "core/error.h"
 #include "core/mapped_file.h"
@@ -134,10 +139,34 @@ size_t utf8SequenceLength(std::string_view s, size_t i) {
   return len;
 }
 
+namespace {
+
+// The offset of the first byte at or after `i` that is not printable ASCII, tab, line feed or
+// carriage return (a control character, or the first byte of a UTF-8 sequence), else s.size():
+// 32 bytes at a time, which is nearly all of a scene's text.
+size_t skipPlainAscii(std::string_view s, size_t i) {
+#if defined(__AVX2__)
+  const __m256i space = _mm256_set1_epi8(0x20), tab = _mm256_set1_epi8('\t'), lf = _mm256_set1_epi8('\n'),
+                cr = _mm256_set1_epi8('\r');
+  for (; i + 32 <= s.size(); i += 32) {
+    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s.data() + i));
+    // As signed bytes, those from 0x80 up are negative: below 0x20 with the control characters.
+    const __m256i low = _mm256_cmpgt_epi8(space, v);
+    const __m256i allowed = _mm256_or_si256(_mm256_cmpeq_epi8(v, tab),
+                                            _mm256_or_si256(_mm256_cmpeq_epi8(v, lf), _mm256_cmpeq_epi8(v, cr)));
+    const auto flagged = uint32_t(_mm256_movemask_epi8(_mm256_andnot_si256(allowed, low)));
+    if (flagged != 0) return i + size_t(std::countr_zero(flagged));
+  }
+#endif
+  return i;
+}
+
+}  // namespace
+
 size_t firstNonTextByte(std::string_view s) {
-  for (size_t i = 0; i < s.size();) {
-    // Eight plain printable ASCII bytes at a time (no byte below 0x20 or above 0x7f),
-    // which is nearly all of a scene; the rest byte by byte.
+  for (size_t i = skipPlainAscii(s, 0); i < s.size(); i = skipPlainAscii(s, i)) {
+    // Eight plain printable ASCII bytes at a time (no byte below 0x20 or above 0x7f) where
+    // fewer than 32 are left or AVX2 is not there; the rest byte by byte.
     if (i + 8 <= s.size()) {
       uint64_t w;
       std::memcpy(&w, s.data() + i, 8);

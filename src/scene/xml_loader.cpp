@@ -14,9 +14,9 @@
 #include <limits>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <variant>
 
 #include "core/error.h"
@@ -35,16 +35,26 @@ namespace {
 
 using tinyxml2::XMLElement;
 
+// Element names are short words that their length and first and last letters nearly always
+// tell apart (a table still compares the whole name): far cheaper than hashing every byte,
+// for the millions of elements of a big scene.
+struct ElementNameHash {
+  size_t operator()(std::string_view s) const noexcept {
+    return s.empty() ? 0 : s.size() * 961 + size_t(uint8_t(s.front())) * 31 + size_t(uint8_t(s.back()));
+  }
+};
+
 // Every attribute each element may carry (docs/scene-format.md). The readers below check
 // the values; this table lets a misspelt name be refused before any value is read.
 const std::vector<std::string_view>& knownAttributes(std::string_view element) {
-  static const std::unordered_map<std::string_view, std::vector<std::string_view>> table = [] {
+  using Table = std::unordered_map<std::string_view, std::vector<std::string_view>, ElementNameHash>;
+  static const Table table = [] {
     const std::vector<std::string_view> object{"material", "no_shadow"};
     auto shape = [&](std::vector<std::string_view> own) {
       own.insert(own.end(), object.begin(), object.end());
       return own;
     };
-    return std::unordered_map<std::string_view, std::vector<std::string_view>>{
+    return Table{
         {"scene", {}},
         {"include", {"file"}},
         {"image", {"width", "height"}},
@@ -113,8 +123,8 @@ class ObjectsBuilt {
 // Whether a child of the root named `name` is an object (every other child is a setting, a
 // light, a named material, or an error).
 bool isObjectName(std::string_view name) {
-  static const std::set<std::string_view> shapes{"sphere", "plane", "box", "cylinder", "cone", "disc",
-                                                 "triangle", "smooth_triangle", "mesh"};
+  static const std::unordered_set<std::string_view, ElementNameHash> shapes{
+      "sphere", "plane", "box", "cylinder", "cone", "disc", "triangle", "smooth_triangle", "mesh"};
   return shapes.count(name) > 0;
 }
 

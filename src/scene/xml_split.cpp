@@ -5,6 +5,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
 #include "core/interrupt.h"
 #include "parallel/parallel_for.h"
 
@@ -114,8 +118,18 @@ class Scanner {
   std::string_view s_;
 };
 
+// The line feeds in s[from, to): 32 bytes at a time where AVX2 is there (a big scene's
+// pieces hold hundreds of megabytes between them).
 int newlines(std::string_view s, size_t from, size_t to) {
-  return int(std::count(s.begin() + std::ptrdiff_t(from), s.begin() + std::ptrdiff_t(to), '\n'));
+  size_t n = 0;
+#if defined(__AVX2__)
+  const __m256i lf = _mm256_set1_epi8('\n');
+  for (; from + 32 <= to; from += 32) {
+    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s.data() + from));
+    n += size_t(std::popcount(uint32_t(_mm256_movemask_epi8(_mm256_cmpeq_epi8(v, lf)))));
+  }
+#endif
+  return int(n + size_t(std::count(s.begin() + std::ptrdiff_t(from), s.begin() + std::ptrdiff_t(to), '\n')));
 }
 
 // What the scan of the root's children meets, in order: a child ending (at `pos`, counted or

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -25,6 +26,28 @@ namespace {
 constexpr size_t kWhole = std::numeric_limits<size_t>::max();
 
 std::string slice(const std::string& s, const XmlPiece& p) { return s.substr(p.begin, p.end - p.begin); }
+
+// Each piece's first line is counted from the bytes before it, whatever runs of line feeds,
+// long lines and blank lines lie there (the count goes 32 bytes at a time where it can).
+TEST(XmlSplit, PiecesKnowTheirFirstLines) {
+  std::mt19937 random(11);
+  std::string xml = "<?xml version=\"1.0\"?>\n<scene>";
+  for (int k = 0; k < 300; ++k) {
+    xml += std::string(random() % 40, '\n') + std::string(random() % 70, ' ') + "<sphere center=\"0 0 0\"";
+    xml += std::string(random() % 3, '\n') + " radius=\"" + std::to_string(1 + k) + "\"";
+    xml += random() % 2 ? "/>" : ">\n  <pigment color=\"1 0 0\"/>\n</sphere>";
+  }
+  xml += "\n</scene>\n";
+  for (size_t pieceBytes : {size_t(1), size_t(100), size_t(1000)}) {
+    const std::optional<XmlSplit> split = splitXmlRoot(xml, pieceBytes);
+    ASSERT_TRUE(split);
+    for (const XmlPiece& p : split->pieces)
+      ASSERT_EQ(p.firstLine, 1 + std::count(xml.begin(), xml.begin() + std::ptrdiff_t(p.begin), '\n'))
+          << "piece at " << p.begin << ", pieces of " << pieceBytes << " bytes";
+    EXPECT_EQ(split->bodyLines,
+              std::count(xml.begin() + std::ptrdiff_t(split->bodyBegin), xml.begin() + std::ptrdiff_t(split->bodyEnd), '\n'));
+  }
+}
 
 TEST(XmlSplit, CutsAfterWholeChildrenOfTheRoot) {
   const std::string xml =
