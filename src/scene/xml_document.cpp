@@ -9,10 +9,10 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
-#include <cctype>
 #include <cstring>
 #include <utility>
 #include <vector>
@@ -152,8 +152,8 @@ size_t skipPlainAscii(std::string_view s, size_t i) {
     const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s.data() + i));
     // As signed bytes, those from 0x80 up are negative: below 0x20 with the control characters.
     const __m256i low = _mm256_cmpgt_epi8(space, v);
-    const __m256i allowed = _mm256_or_si256(_mm256_cmpeq_epi8(v, tab),
-                                            _mm256_or_si256(_mm256_cmpeq_epi8(v, lf), _mm256_cmpeq_epi8(v, cr)));
+    const __m256i allowed =
+        _mm256_or_si256(_mm256_cmpeq_epi8(v, tab), _mm256_or_si256(_mm256_cmpeq_epi8(v, lf), _mm256_cmpeq_epi8(v, cr)));
     const auto flagged = uint32_t(_mm256_movemask_epi8(_mm256_andnot_si256(allowed, low)));
     if (flagged != 0) return i + size_t(std::countr_zero(flagged));
   }

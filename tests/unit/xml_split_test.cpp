@@ -44,8 +44,8 @@ TEST(XmlSplit, PiecesKnowTheirFirstLines) {
     for (const XmlPiece& p : split->pieces)
       ASSERT_EQ(p.firstLine, 1 + std::count(xml.begin(), xml.begin() + std::ptrdiff_t(p.begin), '\n'))
           << "piece at " << p.begin << ", pieces of " << pieceBytes << " bytes";
-    EXPECT_EQ(split->bodyLines,
-              std::count(xml.begin() + std::ptrdiff_t(split->bodyBegin), xml.begin() + std::ptrdiff_t(split->bodyEnd), '\n'));
+    EXPECT_EQ(split->bodyLines, std::count(xml.begin() + std::ptrdiff_t(split->bodyBegin),
+                                           xml.begin() + std::ptrdiff_t(split->bodyEnd), '\n'));
   }
 }
 
