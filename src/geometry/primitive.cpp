@@ -28,26 +28,51 @@ std::optional<ShapeHit> hitSphere(const SphereShape& s, const Ray& ray, double l
 
 // ---------------------------------------------------------------- box
 
+// POV-Ray's slab test (Box::Intersect in shape/boxes.cpp), decision for decision: the x,
+// y and z slabs in turn, the entry depth from 0 up and the exit depth down. Where a y or z
+// depth comes within kBoxCloseTolerance of the one found so far (the ray meets an edge),
+// the depth stays and the face becomes the later slab's when the ray runs more along its
+// axis: at an edge hit exactly (round numbers do it) POV-Ray shades the face the ray
+// faces more squarely, where a plain slab test keeps the first axis's.
 std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, double hi, double unit) {
-  double tNear = -INFINITY, tFar = INFINITY;
+  const Vec3& d = ray.dir;
+  const double len = length(d);  // 1 but for the local rays of turned boxes
+  const double close = kBoxCloseTolerance * unit;
+  // Does the ray run more along axis a than along the axis of `face` (POV-Ray compares y
+  // with x whatever face holds, and z with the held face's axis)?
+  const auto squarer = [&d](int a, int face) {
+    if (a == 1) return std::fabs(d.y) > std::fabs(d.x);
+    return a == 2 && face >= 0 && std::fabs(d.z) > std::fabs(d[face / 2]);
+  };
+  double tNear = 0, tFar = INFINITY;
   int nearFace = -1, farFace = -1;
   for (int a = 0; a < 3; ++a) {
-    const double o = ray.origin[a], d = ray.dir[a];
-    if (d == 0) {
+    const double o = ray.origin[a];
+    if (std::fabs(d[a]) <= kPovEpsilon * len) {  // parallel to this slab (POV-Ray's EPSILON)
       if (o < b.lo[a] || o > b.hi[a]) return std::nullopt;
       continue;
     }
-    double t1 = (b.lo[a] - o) / d, t2 = (b.hi[a] - o) / d;
-    int f1 = 2 * a, f2 = 2 * a + 1;  // face 2a is the low side, 2a+1 the high side
-    if (t1 > t2) {
-      std::swap(t1, t2);
-      std::swap(f1, f2);
+    const bool rising = d[a] > 0;  // face 2a is the low side, 2a+1 the high side
+    const double tIn = ((rising ? b.lo[a] : b.hi[a]) - o) / d[a];
+    const double tOut = ((rising ? b.hi[a] : b.lo[a]) - o) / d[a];
+    const int fIn = 2 * a + (rising ? 0 : 1), fOut = 2 * a + (rising ? 1 : 0);
+    const double tol = a == 0 ? 0 : close;  // the first slab has nothing to be close to
+    if (tOut < tNear) return std::nullopt;
+    if (tOut <= tFar - tol) {
+      tFar = tOut;
+      farFace = fOut;
+    } else if (tOut <= tFar + tol && squarer(a, farFace)) {
+      farFace = fOut;
     }
-    if (t1 > tNear) { tNear = t1; nearFace = f1; }
-    if (t2 < tFar) { tFar = t2; farFace = f2; }
-    if (tNear > tFar) return std::nullopt;
+    if (tIn >= tNear + tol) {
+      if (tIn > tFar) return std::nullopt;
+      tNear = tIn;
+      nearFace = fIn;
+    } else if (tIn >= tNear - tol && squarer(a, nearFace)) {
+      nearFace = fIn;
+    }
   }
-  const double minT = std::max(lo, kDepthTolerance * unit / length(ray.dir));
+  const double minT = std::max(lo, kDepthTolerance * unit / len);
   if (tNear > minT && tNear < hi && nearFace >= 0) return ShapeHit{tNear, nearFace};
   if (tFar > minT && tFar < hi && farFace >= 0) return ShapeHit{tFar, farFace};
   return std::nullopt;

@@ -28,6 +28,7 @@ inline constexpr double kConeTolerance = 1e-9;    // cylinders and cones
 inline constexpr double kPovEpsilon = 1e-10;
 inline constexpr double kMinIsectDepth = 1e-4;    // every hit closer than this is ignored
 inline constexpr double kMaxDistance = 1e7;       // every hit farther than this is dropped
+inline constexpr double kBoxCloseTolerance = 1e-6;  // box slab depths this close meet at an edge
 
 // Spheres farther than this many squared radii from the ray's origin are tested with
 // Haines's arithmetic (below): POV-Ray's r^2 - |oc|^2 + (oc.d)^2 loses about

@@ -259,6 +259,8 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
         hint = ": an attribute given twice, or without quotes or '='";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT)
         hint = ": an element not closed, or closed with another name";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
+        hint = ": not XML, or the file ends before its elements are closed";
       what = std::string("malformed XML (") + doc.ErrorName() + hint + ")";
     }
   }

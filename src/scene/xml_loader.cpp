@@ -166,6 +166,10 @@ std::string withLineFeeds(std::string_view bytes);
 // Included files nest at most this deep (a chain of includes that never ends is a cycle,
 // which is refused first; this bounds a long chain of distinct files).
 constexpr size_t kMaxIncludeDepth = 16;
+// Includes read in all, each time a file is included counting once: files that include
+// the next one several times over (not a cycle, and 16 deep) would otherwise be read 4^16
+// times, a load that never ends. Together they may hold at most what one scene file may.
+constexpr size_t kMaxIncludes = 10000;
 
 class Loader {
  public:
@@ -457,6 +461,9 @@ class Loader {
       if (!id.empty() && i.id == id) throw errorAt(e, "\"" + printable(file) + "\" makes a cycle: " + chain);
     if (including_.size() > kMaxIncludeDepth)
       throw errorAt(e, "more than " + std::to_string(kMaxIncludeDepth) + " nested includes: " + chain);
+    if (++includesRead_ > kMaxIncludes)
+      throw errorAt(e, "more than " + std::to_string(kMaxIncludes) +
+                           " files included in all (each time a file is included counts)");
     // Only regular files: a pipe or a device (/dev/stdin) could keep the loader waiting.
     std::error_code ec;
     if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
@@ -465,8 +472,11 @@ class Loader {
     try {
       bytes = readSceneBytes(path);
     } catch (const Error& err) {
+      if (err.code() != ExitCode::SceneError) throw;  // a signal: not the include's fault
       throw errorAt(e, std::string("cannot include \"") + printable(file) + "\": " + err.what());
     }
+    if ((includedBytes_ += bytes.size()) > kMaxSceneBytes)
+      throw errorAt(e, "the included files hold more than 1 GiB in all");
     std::string_view text = bytes;
     const std::string lineFeeds = withLineFeeds(text);
     if (!lineFeeds.empty()) text = lineFeeds;
@@ -946,6 +956,7 @@ class Loader {
     std::string name, id;  // as messages show it; identity()
   };
   std::vector<Including> including_;  // the file being read, and those including it, outermost first
+  size_t includesRead_ = 0, includedBytes_ = 0;  // in all, for kMaxIncludes and kMaxSceneBytes
 };
 
 // The file with the root's children replaced by their newlines alone: its declaration,

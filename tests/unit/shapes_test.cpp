@@ -228,6 +228,30 @@ TEST(Shapes, BoxObliqueHitPicksTheLaterEntry) {
   expectVecNear(b.normal(r, *h), {-1, 0, 0});
 }
 
+// A ray through the edge where the top (y = 1) and front (z = -1) faces meet enters both
+// slabs at the same depth. POV-Ray's Box::Intersect then shades the face the ray runs more
+// squarely into: the front one when |d.z| > |d.y|, the top one the other way round; so
+// within its CLOSE_TOLERANCE (1e-6) of the edge, and not farther.
+TEST(Shapes, BoxEdgeHitTakesTheFaceTheRayMeetsMoreSquarely) {
+  const Primitive b = prim(BoxShape{{-1, -1, -1}, {1, 1, 1}});
+  const Ray steep{{0, 3, -2}, normalize({0, -2, 1})}, shallow{{0, 2, -3}, normalize({0, -1, 2})};
+  const auto top = hit(b, steep), front = hit(b, shallow);
+  ASSERT_TRUE(top && front);
+  EXPECT_EQ(top->part, 3);    // high y
+  EXPECT_EQ(front->part, 4);  // low z
+  expectVecNear(b.normal(shallow, *front), {0, 0, -1});
+  EXPECT_NEAR(front->t, std::sqrt(5.0), 1e-12);
+  // 1e-7 higher the ray enters through the top, 1e-7 * sqrt(5) past the front plane: within
+  // the tolerance, so still the front face.
+  const auto near = hit(b, {{0, 2 + 1e-7, -3}, normalize({0, -1, 2})});
+  ASSERT_TRUE(near);
+  EXPECT_EQ(near->part, 4);
+  // 1e-5 higher, beyond it: the top face.
+  const auto above = hit(b, {{0, 2 + 1e-5, -3}, normalize({0, -1, 2})});
+  ASSERT_TRUE(above);
+  EXPECT_EQ(above->part, 3);
+}
+
 TEST(Shapes, BoxMisses) {
   const Primitive b = prim(BoxShape{{-1, -1, -1}, {1, 1, 1}});
   EXPECT_FALSE(hit(b, {{2, 0, -5}, kZ}));   // parallel to x slabs, outside them

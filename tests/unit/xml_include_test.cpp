@@ -2,11 +2,15 @@
 // elements in place, errors naming the included file and line, cycles and depth refused.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "scene/xml_loader.h"
 
 namespace pvrt {
@@ -107,6 +111,47 @@ TEST(XmlInclude, DepthIsLimited) {
   EXPECT_NE(errorOf(f.path("d0.xml")).find("d16.xml:1: error: include: more than 16 nested includes"),
             std::string::npos);
   EXPECT_NO_THROW(loadSceneFile(f.path("d4.xml")));  // 16 deep: allowed
+}
+
+// Files that each include the next one `fanOut` times, `depth` deep: no cycle and within
+// the depth limit, yet fanOut^depth reads of the last one. Returns the first file.
+std::string includeFan(const Files& f, int fanOut, int depth) {
+  for (int i = 0; i < depth; ++i) {
+    std::string xml = "<scene>\n";
+    for (int k = 0; k < fanOut; ++k) xml += "  <include file=\"f" + std::to_string(i + 1) + ".xml\"/>\n";
+    f.write("f" + std::to_string(i) + ".xml", xml + "</scene>\n");
+  }
+  f.write("f" + std::to_string(depth) + ".xml", "<scene><light_source location=\"0 5 0\"/></scene>");
+  return f.path("f0.xml");
+}
+
+// 4^8 = 65536 reads of f8.xml would take minutes (4^16, allowed by the depth, for ever).
+TEST(XmlInclude, IncludesInAllAreLimited) {
+  Files f("fan");
+  const std::string message = errorOf(includeFan(f, 4, 8));
+  EXPECT_NE(message.find(": error: include: more than 10000 files included in all"), std::string::npos) << message;
+  EXPECT_EQ(loadSceneFile(includeFan(f, 2, 9)).lights.size(), 512u);  // 1022 includes: fine
+}
+
+// A signal while an included file is read ends the load as an interrupt (exit 130, the usual
+// line), not as "cannot include" (exit 3). Where the signal lands is up to the clock; the
+// outcome must be the same wherever it does.
+TEST(XmlInclude, ASignalDuringIncludesIsAnInterrupt) {
+  Files f("signal");
+  const std::string top = includeFan(f, 3, 8);  // 9840 includes: a second or more
+  std::thread signal([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    interrupt::set(SIGINT);
+  });
+  try {
+    loadSceneFile(top);
+    ADD_FAILURE() << "loaded in under 50 ms";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::Interrupted);
+    EXPECT_STREQ(e.what(), "pvrt: interrupted; nothing was written");
+  }
+  signal.join();
+  interrupt::clear();
 }
 
 TEST(XmlInclude, MissingFileAndBadAttributesAreErrorsAtTheInclude) {
