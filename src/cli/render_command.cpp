@@ -308,13 +308,16 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   s.sampler.adaptive = o.adaptive;
   PixelSampler check(s.sampler);  // validates spp and the antialiasing before any work
   if (check.adaptive() && !o.loadMap.empty())
-    throw Error(ExitCode::Usage, "--load-map is not available with --aa-threshold or --aa-method 2 (a pixel's rays "
-                                 "are traced while its neighbours are)");
+    throw Error(ExitCode::Usage,
+                "--load-map is not available with --aa-threshold, --aa-method 2 or --pov-blocks (a pixel's rays "
+                "are traced while its neighbours are)");
   // POV-Ray's adaptive decisions follow its 32-pixel blocks of the whole image, which a region
   // would cut elsewhere: the region's pixels would not be the full image's.
   if (check.adaptive() && s.region)
-    throw Error(ExitCode::Usage, "a render region (--start-col ... --end-row) is not available with --aa-threshold "
-                                 "or --aa-method 2 (the adaptive decisions follow blocks of the whole image)");
+    throw Error(ExitCode::Usage,
+                "a render region (--start-col ... --end-row) is not available with --aa-threshold, "
+                "--aa-method 2 or --pov-blocks (the adaptive decisions follow blocks of the whole "
+                "image)");
   s.backend = o.backendName == "serial" ? Backend::Serial : Backend::OpenMP;
   s.threads = o.threads;
   if (!o.scheduleName.empty()) {
@@ -576,6 +579,10 @@ Command addRenderCommand(CLI::App& app) {
   c->add_option("--aa-block", o->adaptive.blockSize,
                 "POV-Ray's +BS: the render block size, which decides the result of --aa-threshold with method 1")
       ->capture_default_str();
+  c->add_flag("--pov-blocks", o->adaptive.blocks,
+              "Trace --aa-threshold 0 (+A0.0) in POV-Ray's order: block by block (--aa-block), each block's row "
+              "above and column left first, the shadow cache kept within a block (closer to POV-Ray where a shadow "
+              "edge crosses pixels; default: pixel by pixel)");
   c->add_option("--seed", o->seed, "Seed of the jitter and sequence samplers");
   c->add_option("--backend", o->backendName, "serial, openmp or mpi (start with mpirun; OpenMP threads in each rank)")
       ->check(CLI::IsMember({"serial", "openmp", "mpi"}))

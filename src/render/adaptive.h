@@ -31,6 +31,10 @@ struct AdaptiveSettings {
   double threshold = 0;  // +A t (0 to 1)
   int method = 1;        // +AM 1 or 2
   int blockSize = 32;    // +BS (at least 4)
+  // --pov-blocks: trace threshold 0 (+A0.0) as POV-Ray does, block by block through the
+  // method-1 kernel (every pixel supersampled, the shadow cache kept within each block),
+  // rather than pixel by pixel with the cache restarted at each pixel.
+  bool blocks = false;
 };
 
 // POV-Ray's colour: three floats (its transmit channel is 0 without alpha output).

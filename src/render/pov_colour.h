@@ -12,6 +12,9 @@
 // IEEE operation the scalar form does, so both give the same bits (tests/unit/pov_colour_test.cpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/color.h"
 
 #if defined(__AVX__) && !defined(PVRT_LANES_SCALAR)
@@ -101,5 +104,17 @@ inline FloatColour diffuse(const WideColour& pigment, double intensity, const Fl
 
 // ComputePhongColour, ComputeSpecularColour: intensity x light colour.
 inline FloatColour highlight(const WideColour& light, double intensity) { return scaled(light, intensity); }
+
+// The same with a metallic tint (Metallic > 0): intensity x (light x (1 + m(1 - F) x
+// (pigment - 1))), the tint formed in float colours; F from the cosine nl between normal and
+// light, an acos outside [-1, 1] giving F = 0 as POV-Ray's min/max do with its NaN.
+inline FloatColour metallicHighlight(const FloatColour& light, double intensity, double metallic, double nl,
+                                     const FloatColour& pigment) {
+  const double x = std::fabs(std::acos(nl)) / 1.57079632679489661923;  // M_PI_2
+  double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
+  f = std::min(1.0, std::max(0.0, f));
+  const FloatColour one{1.0f, 1.0f, 1.0f};
+  return scaled(light * (one + scaled(pigment - one, metallic * (1.0 - f))), intensity);
+}
 
 }  // namespace pvrt::povcolour

@@ -96,10 +96,11 @@ void PixelSampler::validateAdaptive() {
     throw Error(ExitCode::Usage, "--aa-method must be 1 or 2 (POV-Ray's +AM), got " + std::to_string(a.method));
   if (a.blockSize < 4)
     throw Error(ExitCode::Usage, "--aa-block must be at least 4 (POV-Ray's +BS), got " + std::to_string(a.blockSize));
-  const bool asked = a.threshold > 0 || a.method == 2;
+  const bool asked = a.threshold > 0 || a.method == 2 || a.blocks;
   if (asked && s_.kind != SamplerKind::Pov)
-    throw Error(ExitCode::Usage, std::string("--aa-threshold and --aa-method 2 are POV-Ray's antialiasing: they need "
-                                             "--sampler pov, not ") + samplerName(s_.kind));
+    throw Error(ExitCode::Usage, std::string("--aa-threshold, --aa-method 2 and --pov-blocks are POV-Ray's "
+                                             "antialiasing: they need --sampler pov, not ") +
+                                     samplerName(s_.kind));
   if (asked && a.method == 2 && rows_ > 9)
     throw Error(ExitCode::Usage, "--aa-method 2 goes at most 9 levels deep (POV-Ray's +R9, --spp 81), got --spp " +
                                      std::to_string(s_.samplesPerPixel));

@@ -697,7 +697,6 @@ class Tracer {
     const Color wideFilter = povcolour::toColor(filter);
     const double w =
         rayWeight(weight * std::max({std::fabs(wideFilter.r), std::fabs(wideFilter.g), std::fabs(wideFilter.b)}));
-    if (w < scene_.globals.adcBailout) return {};
 
     InteriorList next = inside;
     const int at = next.find(object);
@@ -709,11 +708,17 @@ class Tracer {
     }
 
     const double eta = refractionEta(object, inside);
-    // A ray at the last level goes no further, bent or not: POV-Ray's TraceRay checks the
-    // level on entry for a continued ray too, it only does not count one more.
-    if (level >= scene_.globals.maxTraceLevel) return {};
     Ray passing;
-    switch (passage(ray, sp, n, eta, passing)) {
+    const Passage how = passage(ray, sp, n, eta, passing);
+    // A ray at the last level or below the bailout goes no further, bent or not: POV-Ray's
+    // TraceRay checks both on entry, a continued ray's level too (it only does not count one
+    // more). Total internal reflection is found first (TraceRefractionRay), so a mirror ray
+    // refused this way still takes the surface's own reflection's place.
+    if (level >= scene_.globals.maxTraceLevel || w < scene_.globals.adcBailout) {
+      totalInternal = how == Passage::Reflected;
+      return {};
+    }
+    switch (how) {
       case Passage::Straight: {
         // POV-Ray does not spend a trace level on it.
         ++stats_.transmittedRays;
@@ -870,12 +875,12 @@ class Tracer {
   // where metallic (ComputeSpecularColour: only Metallic > 0), rounded as POV-Ray's float
   // colour is.
   // `wide` is `light` rounded to floats and widened (povcolour::widened).
-  static povcolour::FloatColour highlight(const FinishDesc& f, const Color& light, const povcolour::WideColour& wide,
-                                         double h, double nl, const Color& pigment) {
+  static povcolour::FloatColour highlight(const FinishDesc& f, const povcolour::FloatColour& light,
+                                          const povcolour::WideColour& wide, double h, double nl,
+                                          const Color& pigment) {
     if (!(h > 0)) return {};
     if (!(f.metallic > 0)) return povcolour::highlight(wide, h);
-    const Color hc = light * h * shading::metallicTint(f.metallic, shading::metallicFresnel(nl), pigment);
-    return {float(hc.r), float(hc.g), float(hc.b)};
+    return povcolour::metallicHighlight(light, h, f.metallic, nl, povcolour::rounded(pigment));
   }
   // The same without a metallic tint (shadeFour's plain surfaces).
   static povcolour::FloatColour highlight(const povcolour::WideColour& wide, double h) {
@@ -931,9 +936,9 @@ class Tracer {
     }
     if constexpr ((E & kHighlights) != 0) {
       if (s.highlights && !light.shadowless) {
-        if (f.phong > 0) c = c + highlight(f, intensity, lightWide, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
+        if (f.phong > 0) c = c + highlight(f, lightColour, lightWide, shading::phong(f, ray.dir, n, l), nl, pig.rgb);
         if (f.specular > 0)
-          c = c + highlight(f, intensity, lightWide, shading::specular(f, s.specularExponent, ray.dir, n, l), nl,
+          c = c + highlight(f, lightColour, lightWide, shading::specular(f, s.specularExponent, ray.dir, n, l), nl,
                             pig.rgb);
       }
     }

@@ -56,6 +56,21 @@ TEST(AdaptiveRender, ThresholdsAtTheEndsOfTheRange) {
   EXPECT_LT(lax.totals.primaryRays, strict.totals.primaryRays);
 }
 
+// --pov-blocks: threshold 0 traced through the method-1 kernel, so every pixel is the full
+// supersample, found block by block: the frames' centre rays are traced besides, and the image
+// does not depend on the threads (this scene has no crease where the shadow cache decides).
+TEST(AdaptiveRender, PovBlocksTracesEveryPixelFullyInBlocks) {
+  SamplerSettings blocks{SamplerKind::Pov, 9, 0, {0.0, 1, 32}};
+  blocks.adaptive.blocks = true;
+  const RenderResult r = renderWith(blocks);
+  const uint64_t frames = 2 * 80 + 3 * 50;
+  EXPECT_EQ(r.totals.primaryRays, 80 * 50 * 10 + frames);
+  EXPECT_EQ(r.image.data(), renderWith({SamplerKind::Pov, 9, 0}).image.data());
+  RenderSettings one = test::settings(80, 50, Backend::Serial, 1);
+  one.sampler = blocks;
+  EXPECT_EQ(test::renderXml(kScene, one).image.data(), r.image.data());
+}
+
 // Method 2 at +A0.0 subdivides every pixel fully: POV-Ray's +R3 is a 5 x 5 lattice from
 // corner to corner, its points weighted 1, 2, 2, 2, 1 along each axis (the trapezoid rule).
 TEST(AdaptiveRender, Method2AtThresholdZeroTracesTheWholeLattice) {

@@ -2,13 +2,15 @@
 // lanes. Each result is checked against the same operations written one channel at a time
 // through volatile floats, which no optimiser can fold: a lane form that dropped a rounding
 // (core/single.h) or changed an order would differ in the last bits for some of these values.
+#include "render/pov_colour.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "float_channels.h"
-
-#include "render/pov_colour.h"
 
 namespace pvrt::povcolour {
 namespace {
@@ -60,6 +62,29 @@ TEST(PovColour, AmbientAndHighlightAreSumsOfFloatProducts) {
                    channel(p.b, a.b, al.b, e.b));
     expectChannels(highlight(widened(rounded(p)), h), scaledChannel(p.r, h), scaledChannel(p.g, h),
                    scaledChannel(p.b, h));
+  }
+}
+
+// ComputePhongColour's metallic tint: light x (1 + (m(1 - F)) x (pigment - 1)), every colour
+// operation a float, then intensity x that; F 0 where acos is NaN (a cosine above 1).
+TEST(PovColour, MetallicHighlightIsPovRaysFloatChain) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0), m(-0.5, 2.5);
+  for (int i = 0; i < 1000; ++i) {
+    const Color light = randomColour(rng), pigment = randomColour(rng);
+    const double h = u(rng), metallic = double(float(m(rng)));
+    const double nl = i == 0 ? std::nextafter(1.0, 2.0) : u(rng);
+    const double x = std::fabs(std::acos(nl)) / 1.57079632679489661923;
+    double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
+    f = std::min(1.0, std::max(0.0, f));
+    auto channel = [&](double lc, double pc) {
+      const volatile float less = roundedOnce(pc) - 1.0f;
+      const volatile float tint = 1.0f + scaledChannel(less, metallic * (1.0 - f));
+      const volatile float cs = roundedOnce(lc) * tint;
+      return scaledChannel(cs, h);
+    };
+    expectChannels(metallicHighlight(rounded(light), h, metallic, nl, rounded(pigment)), channel(light.r, pigment.r),
+                   channel(light.g, pigment.g), channel(light.b, pigment.b));
   }
 }
 
