@@ -37,11 +37,6 @@ class Tracer {
     // the light buffer's cell of its direction (or -1), as the packet's query found them.
     const ClosestHit* nearest = nullptr;
     int cell = -1;
-    // Whether POV-Ray's shadow cache has been applied to `occlusion` (a primary hit's, by
-    // applyShadowCache); if not, shadowFactor tries the cached object first, and a Blocked
-    // answer's `blocker` becomes the cached one, as segmentTransmittance does.
-    bool cacheApplied = true;
-    uint32_t blocker = 0;
   };
   // A hit point's segment toward one area-light sample (made when first asked for), and
   // the full shadow test's answer (kUnknown until traceSamples finds it) with its blocker.
@@ -58,38 +53,14 @@ class Tracer {
     double dirX[kMaxPacket], dirY[kMaxPacket], dirZ[kMaxPacket], dist[kMaxPacket];
     uint64_t lit;                    // a bit per ray
     uint8_t occlusion[kMaxPacket];  // set by resolveShadows for the lit rays
-    uint32_t blocker[kMaxPacket];   // of each Blocked one: the opaque object its query met first
     uint64_t noted = 0;              // the rays whose see-through segments have `nearest` noted
     int cell = -1;                   // the buffer's cell of every noted segment's direction, or -1
     PacketNearest nearest;
     bool isLit(int k) const { return (lit >> k & 1u) != 0; }
-    KnownLight at(int k, bool cacheApplied) const {
+    KnownLight at(int k) const {
       const bool see = (noted >> k & 1u) != 0 && occlusion[k] == uint8_t(Occlusion::Transparent);
       return {{dirX[k], dirY[k], dirZ[k]}, dist[k], isLit(k), occlusion[k], see ? &nearest.hit[k] : nullptr,
-              see ? cell : -1, cacheApplied, blocker[k]};
-    }
-  };
-  // A packet's hit points, normals and shadow origins, a component per array so that four
-  // lanes are worked at once, and what measureShadowShifts found of them.
-  struct HitLanes {
-    alignas(32) double px[kMaxPacket], py[kMaxPacket], pz[kMaxPacket];
-    alignas(32) double nx[kMaxPacket], ny[kMaxPacket], nz[kMaxPacket];
-    alignas(32) double pointError[kMaxPacket];
-    // Where every shadow segment of a hit starts.
-    alignas(32) double shadowX[kMaxPacket], shadowY[kMaxPacket], shadowZ[kMaxPacket];
-    alignas(32) double shadowShift[kMaxPacket];  // measureShadowShifts
-    uint64_t served = 0;                         // measureShadowShifts: a bit per lane
-    Vec3 shadowOrigin(int k) const { return {shadowX[k], shadowY[k], shadowZ[k]}; }
-    void setShadowOrigin(int k, const Vec3& o) { shadowX[k] = o.x, shadowY[k] = o.y, shadowZ[k] = o.z; }
-    // A lane with no hit: zeros, which the lanes' arithmetic takes without a trap.
-    void clear(int k) {
-      px[k] = py[k] = pz[k] = nx[k] = ny[k] = nz[k] = pointError[k] = shadowX[k] = shadowY[k] = shadowZ[k] = 0;
-    }
-    // Lane k's hit point sp with the ray-facing normal n.
-    void set(int k, const SurfacePoint& sp, const Vec3& n) {
-      px[k] = sp.p.x, py[k] = sp.p.y, pz[k] = sp.p.z;
-      nx[k] = n.x, ny[k] = n.y, nz[k] = n.z;
-      pointError[k] = length(sp.error);
+              see ? cell : -1};
     }
   };
 
@@ -158,7 +129,8 @@ class Tracer {
         continue;
       }
       if (k >= count || !hits[k]) {
-        at_.clear(k);
+        px_[k] = py_[k] = pz_[k] = nx_[k] = ny_[k] = nz_[k] = pointError_[k] = 0;
+        shadowX_[k] = shadowY_[k] = shadowZ_[k] = 0;
         continue;
       }
       // Exactly what shade() and lightContribution() compute for this hit, done once.
@@ -170,14 +142,39 @@ class Tracer {
       // normal points to (it asks dot(n, l) >= kPovEpsilon first), so all of this hit's
       // segments start here.
       if constexpr ((E & kShadows) != 0)
-        at_.setShadowOrigin(k, shadowSegmentOrigin(points_[k], normals_[k], shadowSlabLimit_));
-      at_.set(k, points_[k], normals_[k]);
+        setShadowOrigin(k, shadowSegmentOrigin(points_[k], normals_[k], shadowSlabLimit_));
+      px_[k] = points_[k].p.x, py_[k] = points_[k].p.y, pz_[k] = points_[k].p.z;
+      nx_[k] = normals_[k].x, ny_[k] = normals_[k].y, nz_[k] = normals_[k].z;
+      pointError_[k] = length(points_[k].error);
     }
-    if constexpr ((E & kShadows) != 0) measureShadowShifts(at_, padded, hitBits);
-    findLights(at_, padded, hitBits, known_.data());
+    if constexpr ((E & kShadows) != 0) measureShadowShifts(padded, hitBits);
+    for (size_t j = 0; j < lights; ++j) {
+      using namespace lanes;
+      PacketLight& pl = known_[j];
+      const Vec3& at = scene_.lights[j].location;
+      const Double4 lx = splat(at.x), ly = splat(at.y), lz = splat(at.z), eps = splat(kPovEpsilon);
+      pl.lit = 0;
+      for (int k = 0; k < padded; k += 4) {
+        if (((hitBits >> k) & 0xFu) == 0) {
+          // What the arithmetic below gives a miss's zero point and normal, but the
+          // direction and distance: never lit, so never read but by masked lanes.
+          const Double4 zero = splat(0.0);
+          store(pl.dirX + k, zero), store(pl.dirY + k, zero), store(pl.dirZ + k, zero), store(pl.dist + k, zero);
+          continue;
+        }
+        // Lane by lane the operations of length(), the reciprocal and dot(), in their order.
+        const Double4 tx = lx - load(px_ + k), ty = ly - load(py_ + k), tz = lz - load(pz_ + k);
+        const Double4 dist = lanes::sqrt(tx * tx + ty * ty + tz * tz);
+        const Double4 inv = splat(1.0) / dist;  // ComputeOneWhiteLightRay: VInverseScaleEq
+        const Double4 dx = tx * inv, dy = ty * inv, dz = tz * inv;
+        const Double4 nl = load(nx_ + k) * dx + load(ny_ + k) * dy + load(nz_ + k) * dz;
+        const unsigned lit = less(load(pointError_ + k), dist) & lessEqual(eps, nl);
+        store(pl.dirX + k, dx), store(pl.dirY + k, dy), store(pl.dirZ + k, dz), store(pl.dist + k, dist);
+        pl.lit |= uint64_t(lit) << k;
+      }
+    }
     if constexpr ((E & kShadows) != 0) {
-      for (size_t j = 0; j < lights; ++j)
-        if (resolveShadows(count, j, at_, known_[j])) applyShadowCache(count, known_[j]);
+      for (size_t j = 0; j < lights; ++j) resolveShadows(count, j);
     }
     if constexpr ((E & (kReflection | kTransmission)) != 0) traceSpawnedAhead(rays, count, hitBits, inside);
     for (int k = 0; k < count; ++k) {
@@ -219,18 +216,10 @@ class Tracer {
  private:
   // The rays that shading a packet's hits will spawn at level 1, with their closest hits
   // found ahead together (traceSpawnedAhead): a bit in `live` per packet ray that has one.
-  // Where those hits are many, their shading's shadow segments toward point lights are
-  // answered ahead too, as a packet's (resolveShadows), a bit in `shadowed` per such hit:
-  // the shadow cache is applied as shading asks, in its order (shadowFactor).
   struct SpawnedAhead {
     PacketRays rays;
     uint64_t live = 0;
     std::optional<ClosestHit> hits[kMaxPacket];
-    uint64_t shadowed = 0;
-    SurfacePoint points[kMaxPacket];  // of the shadowed hits, as shade() finds them
-    Vec3 normals[kMaxPacket];
-    HitLanes at;
-    std::vector<PacketLight> lights;  // one per light
   };
 
   Color shadeFound(const Ray& ray, const std::optional<ClosestHit>& found, int level, double weight,
@@ -247,12 +236,7 @@ class Tracer {
     if (lane < 0 || !(ahead.live >> lane & 1u) || !sameBits(ahead.rays.ray(lane), ray))
       return trace(ray, level, weight, inside, true);
     if (interrupt::requested()) return {};
-    if (!(ahead.shadowed >> lane & 1u)) return shadeFound(ray, ahead.hits[lane], level, weight, inside);
-    ++stats_.shadingOps;
-    knownRay_ = lane;
-    knownLights_ = ahead.lights.data();
-    const ClosestHit& h = *ahead.hits[lane];
-    return shadeAt(ray, h.primitive, h.hit, ahead.points[lane], ahead.normals[lane], level + 1, weight, inside);
+    return shadeFound(ray, ahead.hits[lane], level, weight, inside);
   }
   static bool sameBits(const Ray& a, const Ray& b) {
     const auto bits = [](double x) { return std::bit_cast<uint64_t>(x); };
@@ -323,41 +307,7 @@ class Tracer {
         if (!(a->live >> k & 1u)) a->rays.set(k, Vec3(NAN), Vec3(NAN));
       scene_.bvh.closestSpread(a->rays, a->live, scene_.tol.minDepth, scene_.tol.maxDistance, a->hits,
                                stats_.intersectionTests);
-      if constexpr ((E & kShadows) != 0) shadowsAhead(*a, count);
     }
-  }
-
-  // The shadow segments of the hits of `a` (lanes below `count`) toward every point light,
-  // found as tracePacket finds its hits', for shading to take (traceSpawned); the hit
-  // points and normals are shade()'s, each lane's own operations.
-  void shadowsAhead(SpawnedAhead& a, int count) {
-    a.shadowed = 0;
-    uint64_t hitBits = 0;
-    for (uint64_t b = a.live; b != 0; b &= b - 1) {
-      const int k = __builtin_ctzll(b);
-      hitBits |= uint64_t(a.hits[k].has_value()) << k;
-    }
-    if (__builtin_popcountll(hitBits) < kMinSpread) return;
-    const int padded = (count + 3) & ~3;
-    for (int k = 0; k < padded; ++k) {
-      if (!(hitBits >> k & 1u)) {
-        a.at.clear(k);
-        continue;
-      }
-      const Ray ray = a.rays.ray(k);
-      const ClosestHit& h = *a.hits[k];
-      a.points[k] = scene_.bvh.surfacePoint(h.primitive, ray, h.hit);
-      Vec3 n = scene_.bvh.normal(h.primitive, ray, h.hit);
-      if (dot(n, ray.dir) > 0) n = -n;
-      a.normals[k] = n;
-      a.at.setShadowOrigin(k, shadowSegmentOrigin(a.points[k], n, shadowSlabLimit_));
-      a.at.set(k, a.points[k], n);
-    }
-    measureShadowShifts(a.at, padded, hitBits);
-    a.lights.resize(scene_.lights.size());
-    findLights(a.at, padded, hitBits, a.lights.data());
-    for (size_t j = 0; j < scene_.lights.size(); ++j) resolveShadows(count, j, a.at, a.lights[j]);
-    a.shadowed = hitBits;
   }
   static constexpr int kMinSpread = 2;
 
@@ -392,12 +342,8 @@ class Tracer {
     const double alpha = 1.0 - pig.filter - pig.transmit;
 
     povcolour::FloatColour lit = povcolour::ambient(pig.rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha);
-    // Shadow answers found beforehand for this hit: by tracePacket for a primary hit (the
-    // shadow cache applied), by shadowsAhead for a level-1 spawned ray's (not applied).
+    // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
-    const PacketLight* knownLights = std::exchange(knownLights_, nullptr);
-    const bool cacheApplied = knownLights == nullptr;
-    if (cacheApplied) knownLights = known_.data();
     // The cells found for the prefetch above answer the shadow segments from p, with no
     // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
     pointCells_ = scene_.prefetchLightBuffers && known < 0;
@@ -405,7 +351,7 @@ class Tracer {
     levelOneShadows_ = level == 1;
     const povcolour::WideColour pigment = povcolour::widened(povcolour::rounded(pig.rgb));  // for every light
     for (size_t j = 0; j < scene_.lights.size(); ++j) {
-      const KnownLight kl = known >= 0 ? knownLights[j].at(known, cacheApplied) : KnownLight{};
+      const KnownLight kl = known >= 0 ? known_[j].at(known) : KnownLight{};
       lit = lit + lightContribution(scene_.lights[j], s, pig, pigment, alpha, ray, sp, n, inside,
                                     known >= 0 ? &kl : nullptr);
     }
@@ -521,7 +467,7 @@ class Tracer {
       double off[3][4], o[3][4];
       store(off[0], nx * shift), store(off[1], ny * shift), store(off[2], nz * shift);
       store(o[0], px + nx * shift), store(o[1], py + ny * shift), store(o[2], pz + nz * shift);
-      double* origin[3] = {at_.shadowX + k0, at_.shadowY + k0, at_.shadowZ + k0};
+      double* origin[3] = {shadowX_ + k0, shadowY_ + k0, shadowZ_ + k0};
       for (int i = 0; i < 4; ++i) {
         for (int a = 0; a < 3; ++a) {
           const double v = o[a][i];
@@ -536,9 +482,9 @@ class Tracer {
       const int k = k0 + i;
       points_[k] = {{qs[0][i], qs[1][i], qs[2][i]}, {es[0][i], es[1][i], es[2][i]}};
       normals_[k] = {ns[0][i], ns[1][i], ns[2][i]};
-      at_.px[k] = qs[0][i], at_.py[k] = qs[1][i], at_.pz[k] = qs[2][i];
-      at_.nx[k] = ns[0][i], at_.ny[k] = ns[1][i], at_.nz[k] = ns[2][i];
-      at_.pointError[k] = error[i];
+      px_[k] = qs[0][i], py_[k] = qs[1][i], pz_[k] = qs[2][i];
+      nx_[k] = ns[0][i], ny_[k] = ns[1][i], nz_[k] = ns[2][i];
+      pointError_[k] = error[i];
     }
     return true;
   }
@@ -553,8 +499,8 @@ class Tracer {
       if (m[i]->checker < 0 || m[i]->checker != m[0]->checker) return false;
     if (scene_.materials.checker(*m[0]).worldToPattern) return false;
     const Double4 eps = splat(kPovEpsilon);
-    const Double4 k = lanes::floor(load(at_.px + k0) + eps) + lanes::floor(load(at_.py + k0) + eps) +
-                      lanes::floor(load(at_.pz + k0) + eps);
+    const Double4 k = lanes::floor(load(px_ + k0) + eps) + lanes::floor(load(py_ + k0) + eps) +
+                      lanes::floor(load(pz_ + k0) + eps);
     const Double4 half = abs(k) * splat(0.5);
     second = ~(equal(half, lanes::floor(half)) & less(half, splat(INFINITY))) & 0xFu;
     return true;
@@ -651,8 +597,8 @@ class Tracer {
       double intensities[4];
       if (diffuses) {
         using namespace lanes;
-        const Double4 nl = load(at_.nx + k0) * load(pl.dirX + k0) + load(at_.ny + k0) * load(pl.dirY + k0) +
-                           load(at_.nz + k0) * load(pl.dirZ + k0);
+        const Double4 nl = load(nx_ + k0) * load(pl.dirX + k0) + load(ny_ + k0) * load(pl.dirY + k0) +
+                           load(nz_ + k0) * load(pl.dirZ + k0);
         store(intensities, nl * diffuseAlpha);
       }
       bool phong = false, specular = false;
@@ -789,48 +735,17 @@ class Tracer {
     return fade * povcolour::rounded(c) * filter;
   }
 
-  // Each light's direction and distance from the lanes of `hitBits` (as lightContribution
-  // computes them, four lanes at a time) and whether it is lit there, into out[j].
-  void findLights(const HitLanes& h, int padded, uint64_t hitBits, PacketLight* out) {
-    for (size_t j = 0; j < scene_.lights.size(); ++j) {
-      using namespace lanes;
-      PacketLight& pl = out[j];
-      const Vec3& at = scene_.lights[j].location;
-      const Double4 lx = splat(at.x), ly = splat(at.y), lz = splat(at.z), eps = splat(kPovEpsilon);
-      pl.lit = 0;
-      for (int k = 0; k < padded; k += 4) {
-        if (((hitBits >> k) & 0xFu) == 0) {
-          // What the arithmetic below gives a miss's zero point and normal, but the
-          // direction and distance: never lit, so never read but by masked lanes.
-          const Double4 zero = splat(0.0);
-          store(pl.dirX + k, zero), store(pl.dirY + k, zero), store(pl.dirZ + k, zero), store(pl.dist + k, zero);
-          continue;
-        }
-        // Lane by lane the operations of length(), the reciprocal and dot(), in their order.
-        const Double4 tx = lx - load(h.px + k), ty = ly - load(h.py + k), tz = lz - load(h.pz + k);
-        const Double4 dist = lanes::sqrt(tx * tx + ty * ty + tz * tz);
-        const Double4 inv = splat(1.0) / dist;  // ComputeOneWhiteLightRay: VInverseScaleEq
-        const Double4 dx = tx * inv, dy = ty * inv, dz = tz * inv;
-        const Double4 nl = load(h.nx + k) * dx + load(h.ny + k) * dy + load(h.nz + k) * dz;
-        const unsigned lit = less(load(h.pointError + k), dist) & lessEqual(eps, nl);
-        store(pl.dirX + k, dx), store(pl.dirY + k, dy), store(pl.dirZ + k, dz), store(pl.dist + k, dist);
-        pl.lit |= uint64_t(lit) << k;
-      }
-    }
-  }
-
-  // The shadow segments toward light j of the hits in `h` (lanes 0 .. count-1), those that
-  // lightContribution will ask for, answered before any is shaded, without the shadow
-  // cache; the results land in pl. False, with nothing tested, for a light without shadows
-  // or an area light.
-  bool resolveShadows(int count, size_t j, const HitLanes& h, PacketLight& pl) {
+  // The shadow segments toward light j of the packet's hits, those that lightContribution
+  // will ask for, answered before any is shaded; the results land in known_.
+  void resolveShadows(int count, size_t j) {
     const Light& light = scene_.lights[j];
-    if (light.shadowless) return false;
+    if (light.shadowless) return;
+    PacketLight& pl = known_[j];
     pl.noted = 0;
     if constexpr ((E & kAreaLights) != 0) {
       if (light.area) {  // sampled per hit, as before
         std::fill(pl.occlusion, pl.occlusion + count, kUnknown);
-        return false;
+        return;
       }
     }
     const double tol = scene_.tol.shadow;
@@ -842,15 +757,15 @@ class Tracer {
     uint64_t live = pl.lit;
     const LightBuffer* buffer = bufferOf(j);
     if (buffer && scene_.packetShadowsFromBuffers) {
-      for (uint64_t b = live & h.served; b != 0; b &= b - 1) {
+      for (uint64_t b = live & served_; b != 0; b &= b - 1) {
         const int k = __builtin_ctzll(b);
         pl.occlusion[k] = uint8_t(scene_.bvh.occlusionToLight(
-            *buffer, Ray{h.shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
-            bufferReach(pl.dist[k], h.shadowShift[k]), stats_.intersectionTests, pl.blocker[k]));
+            *buffer, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}}, tol, pl.dist[k] - tol,
+            bufferReach(pl.dist[k], shadowShift_[k]), stats_.intersectionTests, blocker_[k]));
       }
-      live &= ~h.served;
+      live &= ~served_;
     }
-    if (live == 0) return true;
+    if (live == 0) return applyShadowCache(count, pl);
     // The segments segmentTransmittance() would trace, in the rays' own lanes: the others'
     // origins are NaN, which the packet's bounds leave out, and they end before they start.
     // Beside them, the range of their directions and the farthest reach from the light, for
@@ -865,9 +780,9 @@ class Tracer {
       const unsigned in = unsigned(live >> k) & 0xFu;
       const Double4 dist = load(pl.dist + k);
       const Double4 dir[3] = {load(pl.dirX + k), load(pl.dirY + k), load(pl.dirZ + k)};
-      store(segments_.ox + k, select(in, load(h.shadowX + k), none));
-      store(segments_.oy + k, select(in, load(h.shadowY + k), none));
-      store(segments_.oz + k, select(in, load(h.shadowZ + k), none));
+      store(segments_.ox + k, select(in, load(shadowX_ + k), none));
+      store(segments_.oy + k, select(in, load(shadowY_ + k), none));
+      store(segments_.oz + k, select(in, load(shadowZ_ + k), none));
       store(segments_.dx + k, dir[0]);
       store(segments_.dy + k, dir[1]);
       store(segments_.dz + k, dir[2]);
@@ -878,19 +793,19 @@ class Tracer {
           lo[a] = minOr(d, lo[a]);  // a NaN lane keeps what it had
           hi[a] = maxOr(d, hi[a]);
         }
-        reach = maxOr(select(in, (dist + load(h.shadowShift + k)) * widen, nowhere), reach);
+        reach = maxOr(select(in, (dist + load(shadowShift_ + k)) * widen, nowhere), reach);
       }
     }
     // The cells list directions from the light: the negated range of the segments'.
-    const int cell = buffer && (live & ~h.served) == 0
+    const int cell = buffer && (live & ~served_) == 0
                          ? buffer->commonCell({-highest(hi[0]), -highest(hi[1]), -highest(hi[2])},
                                               {-lowest(lo[0]), -lowest(lo[1]), -lowest(lo[2])})
                          : -1;
     if (cell >= 0)
-      scene_.bvh.occlusionPacketInCell(*buffer, cell, highest(reach), segments_, segmentEnd_, tol, live, occlusion_,
-                                       pl.blocker, stats_.intersectionTests, &pl.nearest);
+      scene_.bvh.occlusionPacketInCell(*buffer, cell, highest(reach), segments_, segmentEnd_, tol, live,
+                                       occlusion_, blocker_, stats_.intersectionTests, &pl.nearest);
     else
-      scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, live, occlusion_, pl.blocker,
+      scene_.bvh.occlusionPacket(light.location, segments_, segmentEnd_, tol, live, occlusion_, blocker_,
                                  stats_.intersectionTests, &pl.nearest);
     // Every segment tested here has its see-through walk's first step noted (and, with a
     // common cell, that cell is its direction's: commonCell holds every direction of the box).
@@ -900,7 +815,7 @@ class Tracer {
       const int k = __builtin_ctzll(b);
       pl.occlusion[k] = uint8_t(occlusion_[k]);
     }
-    return true;
+    applyShadowCache(count, pl);
   }
 
   // POV-Ray's shadow cache for the packet's (level-1) hits, in ray order, as
@@ -919,35 +834,35 @@ class Tracer {
       if (!((pl.lit >> k) & 1)) continue;
       const uint32_t cached = levelOne != kNoCache ? levelOne : deeper;
       const bool blocked = Occlusion(pl.occlusion[k]) == Occlusion::Blocked;
-      if (cached != kNoCache && !(blocked && pl.blocker[k] == cached)) {
+      if (cached != kNoCache && !(blocked && blocker_[k] == cached)) {
         ++stats_.intersectionTests;
-        if (scene_.bvh.intersect(cached, Ray{at_.shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
+        if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
                                  scene_.tol.minDepth, pl.dist[k])) {
           pl.occlusion[k] = uint8_t(Occlusion::Blocked);
           continue;
         }
       }
-      if (blocked) levelOne = pl.blocker[k];
+      if (blocked) levelOne = blocker_[k];
     }
   }
 
   // How far each hit's shadow origin lies from its point (length(), lane by lane), and in
-  // h.served the lanes whose segments the light buffers may answer (bufferServes).
-  void measureShadowShifts(HitLanes& h, int padded, uint64_t hitBits) {
+  // served_ the lanes whose segments the light buffers may answer (bufferServes).
+  void measureShadowShifts(int padded, uint64_t hitBits) {
     using namespace lanes;
     const Double4 limit = splat(0.5 * LightBuffer::kMargin * scene_.tol.shadow);
-    h.served = 0;
+    served_ = 0;
     for (int k = 0; k < padded; k += 4) {
       if (((hitBits >> k) & 0xFu) == 0) {  // misses' origins are zeros, as their points
-        store(h.shadowShift + k, splat(0.0));
-        h.served |= uint64_t(0xFu) << k;
+        store(shadowShift_ + k, splat(0.0));
+        served_ |= uint64_t(0xFu) << k;
         continue;
       }
-      const Double4 x = load(h.shadowX + k) - load(h.px + k), y = load(h.shadowY + k) - load(h.py + k),
-                    z = load(h.shadowZ + k) - load(h.pz + k);
+      const Double4 x = load(shadowX_ + k) - load(px_ + k), y = load(shadowY_ + k) - load(py_ + k),
+                    z = load(shadowZ_ + k) - load(pz_ + k);
       const Double4 shift = lanes::sqrt(x * x + y * y + z * z);
-      store(h.shadowShift + k, shift);
-      h.served |= uint64_t(lessEqual(shift, limit)) << k;
+      store(shadowShift_ + k, shift);
+      served_ |= uint64_t(lessEqual(shift, limit)) << k;
     }
   }
 
@@ -1036,12 +951,10 @@ class Tracer {
     const uint8_t known = knownLight ? knownLight->occlusion : kUnknown;
     if (known != kUnknown) {
       ++stats_.shadowRays;
-      if (knownLight->cacheApplied) {
-        switch (Occlusion(known)) {
-          case Occlusion::Clear: return Color(1.0);
-          case Occlusion::Blocked: return {};
-          case Occlusion::Transparent: break;
-        }
+      switch (Occlusion(known)) {
+        case Occlusion::Clear: return Color(1.0);
+        case Occlusion::Blocked: return {};
+        case Occlusion::Transparent: break;
       }
     }
     // Every segment of this point leaves on the side n points to (lightContribution asks
@@ -1055,14 +968,8 @@ class Tracer {
       if (light.area) return areaShadow(light, p, l, inside);
     }
     const size_t j = size_t(&light - scene_.lights.data());
-    if (known != kUnknown) {
-      if (knownLight->cacheApplied)
-        return orderedTransmittance(p, l, dist, inside, bufferOf(j), knownLight->cell, knownLight->nearest);
-      // segmentTransmittance's steps, with the full test's answer known.
-      if (blockedByCachedObject(Ray{p, l}, dist)) return {};
-      return transmittanceAfter(Occlusion(known), knownLight->blocker, p, l, dist, inside, bufferOf(j),
-                                knownLight->cell, knownLight->nearest);
-    }
+    if (known != kUnknown)
+      return orderedTransmittance(p, l, dist, inside, bufferOf(j), knownLight->cell, knownLight->nearest);
     // The segment runs from p, a hair off the surface point, along the direction from the
     // surface point to the light: within kMargin of the light's ray when that hair is small
     // against the tolerance kept from the light (it always is but for absurd coordinates).
@@ -1322,7 +1229,15 @@ class Tracer {
   std::optional<ClosestHit> hits_[kMaxPacket];
   SurfacePoint points_[kMaxPacket];
   Vec3 normals_[kMaxPacket];
-  HitLanes at_;  // the packet's hits'
+  // Where every shadow segment of a hit starts.
+  alignas(32) double shadowX_[kMaxPacket], shadowY_[kMaxPacket], shadowZ_[kMaxPacket];
+  Vec3 shadowOrigin(int k) const { return {shadowX_[k], shadowY_[k], shadowZ_[k]}; }
+  void setShadowOrigin(int k, const Vec3& o) { shadowX_[k] = o.x, shadowY_[k] = o.y, shadowZ_[k] = o.z; }
+  alignas(32) double px_[kMaxPacket], py_[kMaxPacket], pz_[kMaxPacket];
+  alignas(32) double nx_[kMaxPacket], ny_[kMaxPacket], nz_[kMaxPacket];
+  alignas(32) double pointError_[kMaxPacket];
+  alignas(32) double shadowShift_[kMaxPacket];  // measureShadowShifts
+  uint64_t served_ = 0;                         // measureShadowShifts: a bit per lane
   PacketRays segments_;
   alignas(32) double segmentEnd_[kMaxPacket];
   Occlusion occlusion_[kMaxPacket];
@@ -1340,7 +1255,6 @@ class Tracer {
   std::optional<ShadowOrigin> pointShadowOrigin_;
   std::vector<uint32_t> shadowCandidates_;  // orderedTransmittance: what its steps may meet
   int knownRay_ = -1;               // the packet ray whose hit is shaded next, if any
-  const PacketLight* knownLights_ = nullptr;  // its lights when not known_ (a SpawnedAhead's)
   // POV-Ray's two shadow caches per light (TracePointLightShadowRay): the first half for
   // the shadow tests of hits at trace level 1 (lightSourceLevel1ShadowCache), the second for
   // deeper ones (lightSourceOtherShadowCache); see cachedBlocker.
