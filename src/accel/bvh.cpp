@@ -350,105 +350,34 @@ void Bvh::traversePacket(const PacketCone& cone, const double& sHi, Enters&& ent
   }
 }
 
-void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
-                        uint64_t& tests) const {
-  PacketRays lanes;
-  lanes.set(rays, count);
-  // Plain arrays, not value-initialised: a packet sets what it reads. The hits are kept
-  // a field per array until the end (assigning std::optionals in the loop costs more).
-  alignas(32) double best[kMaxPacket];
-  double hitU[kMaxPacket], hitV[kMaxPacket];
-  int hitPart[kMaxPacket];
-  uint32_t owner[kMaxPacket];
-  for (int k = 0; k < lanes.groups * 4; ++k) best[k] = k < count ? tMax : -INFINITY;
-  for (int k = 0; k < count; ++k) owner[k] = kNone;
-  LazySlabs slabs(lanes);
-  // Unit directions from a common origin: the ray parameter t is the cone's s.
-  Vec3 lo, hi;
-  lanes.directionRange(lo, hi);
-  const PacketCone cone(rays[0].origin, lo, hi, tMin);
-  double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
-  // Tests every ray against primitive i, four at a time for a sphere or a plane.
-  auto intersect = [&](uint32_t i) {
-    tests += uint64_t(count);
-    const PrimitiveRecord& p = items_[i];
-    if (p.kind == PrimitiveRecord::Kind::Other) {
-      for (int k = 0; k < count; ++k) {
-        if (const auto h = intersectItem(i, rays[k], tMin, best[k])) {
-          best[k] = h->t;
-          hitPart[k] = h->part;
-          hitU[k] = h->u;
-          hitV[k] = h->v;
-          owner[k] = i;
-        }
-      }
-      return;
-    }
-    double t[4];
-    for (int g = 0; g < lanes.groups; ++g) {
-      const unsigned real = count - 4 * g >= 4 ? 0xFu : (1u << (count - 4 * g)) - 1;
-      unsigned hit = (p.kind == PrimitiveRecord::Kind::Sphere
-                          ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)
-                          : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)) &
-                      real;
-      for (; hit != 0; hit &= hit - 1) {
-        const int c = __builtin_ctz(hit), k = 4 * g + c;
-        best[k] = t[c];
-        hitPart[k] = 0;
-        hitU[k] = hitV[k] = 0;
-        owner[k] = i;
-      }
-    }
-  };
-  double unused[kBvhWidth];
-  auto enters = [&](const BvhNode& n, unsigned candidates) {
-    unsigned found = 0;
-    for (int k = 0; k < count && found != candidates; ++k)
-      found |= hitsChildren(n, slabs[k], tMin, best[k], unused) & candidates;
-    return found;
-  };
-  // The unbounded primitives first, as in traverse().
-  if (boundedCount_ < items_.size()) {
-    for (uint32_t i = boundedCount_; i < items_.size(); ++i) intersect(i);
-    farthest = *std::max_element(best, best + count);
-  }
-  // A leaf's primitives are tested against every ray: four rays cost one vector test,
-  // about what one ray's box test would cost to rule them out.
-  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
-    for (uint32_t i = first; i < first + n; ++i) intersect(i);
-    farthest = *std::max_element(best, best + count);
-    return false;
-  });
-  for (int k = 0; k < count; ++k) {
-    if (owner[k] == kNone) out[k].reset();
-    else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};
-  }
-}
+namespace {
 
-void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, double tMax,
-                        std::optional<ClosestHit>* out, uint64_t& tests) const {
+// The closest hits of a packet's rays while closestPacket or closestSpread runs, a field
+// per array until the end (assigning std::optionals in the loop costs more). Plain
+// arrays, not value-initialised: a query sets what it reads.
+struct LaneHits {
   alignas(32) double best[kMaxPacket];
-  double hitU[kMaxPacket], hitV[kMaxPacket];
-  int hitPart[kMaxPacket];
+  double u[kMaxPacket], v[kMaxPacket];
+  int part[kMaxPacket];
   uint32_t owner[kMaxPacket];
-  for (int k = 0; k < lanes.groups * 4; ++k) {
-    best[k] = (live >> k & 1u) ? tMax : -INFINITY;  // a lane out of `live` hits nothing
-    owner[k] = kNone;
+
+  // A lane out of `live` (padding included) starts at -infinity, which no hit is nearer than.
+  LaneHits(const PacketRays& lanes, uint64_t live, double tMax) {
+    for (int k = 0; k < lanes.groups * 4; ++k) {
+      best[k] = (live >> k & 1u) ? tMax : -INFINITY;
+      owner[k] = kNone;
+    }
   }
-  // Tests the rays of `among` against primitive i, four at a time for a sphere or a plane.
-  auto intersect = [&](uint32_t i, uint64_t among) {
+  // Tests the rays of `among` against primitive i (record p), four at a time for a sphere
+  // or a plane; another shape one ray at a time, by other(i, ray, tMin, tMax).
+  template <class Other>
+  void intersect(const PrimitiveRecord& p, uint32_t i, const PacketRays& lanes, uint64_t among, double tMin,
+                 uint64_t& tests, Other&& other) {
     tests += uint64_t(__builtin_popcountll(among));
-    const PrimitiveRecord& p = items_[i];
     if (p.kind == PrimitiveRecord::Kind::Other) {
       for (uint64_t m = among; m != 0; m &= m - 1) {
         const int k = __builtin_ctzll(m);
-        if (const auto h = intersectItem(i, lanes.ray(k), tMin, best[k])) {
-          best[k] = h->t;
-          hitPart[k] = h->part;
-          hitU[k] = h->u;
-          hitV[k] = h->v;
-          owner[k] = i;
-        }
+        if (const auto h = other(i, lanes.ray(k), tMin, best[k])) note(k, h->t, h->part, h->u, h->v, i);
       }
       return;
     }
@@ -461,16 +390,75 @@ void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, dou
                           : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)) &
                      in;
       for (; hit != 0; hit &= hit - 1) {
-        const int c = __builtin_ctz(hit), k = 4 * g + c;
-        best[k] = t[c];
-        hitPart[k] = 0;
-        hitU[k] = hitV[k] = 0;
-        owner[k] = i;
+        const int c = __builtin_ctz(hit);
+        note(4 * g + c, t[c], 0, 0, 0, i);
       }
     }
+  }
+  void note(int k, double t, int hitPart, double hitU, double hitV, uint32_t i) {
+    best[k] = t;
+    part[k] = hitPart;
+    u[k] = hitU;
+    v[k] = hitV;
+    owner[k] = i;
+  }
+  // The answers of the lanes of `live`.
+  void write(uint64_t live, std::optional<ClosestHit>* out) const {
+    for (uint64_t m = live; m != 0; m &= m - 1) {
+      const int k = __builtin_ctzll(m);
+      if (owner[k] == kNone) out[k].reset();
+      else out[k] = ClosestHit{ShapeHit{best[k], part[k], u[k], v[k]}, owner[k]};
+    }
+  }
+};
+
+}  // namespace
+
+void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, std::optional<ClosestHit>* out,
+                        uint64_t& tests) const {
+  PacketRays lanes;
+  lanes.set(rays, count);
+  const uint64_t all = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
+  LaneHits hits(lanes, all, tMax);
+  const double* best = hits.best;
+  auto other = [this](uint32_t i, const Ray& ray, double lo, double hi) { return intersectItem(i, ray, lo, hi); };
+  LazySlabs slabs(lanes);
+  // Unit directions from a common origin: the ray parameter t is the cone's s.
+  Vec3 lo, hi;
+  lanes.directionRange(lo, hi);
+  const PacketCone cone(rays[0].origin, lo, hi, tMin);
+  double farthest = tMax;  // the largest best[k]: beyond it no ray needs anything
+  double unused[kBvhWidth];
+  auto enters = [&](const BvhNode& n, unsigned candidates) {
+    unsigned found = 0;
+    for (int k = 0; k < count && found != candidates; ++k)
+      found |= hitsChildren(n, slabs[k], tMin, best[k], unused) & candidates;
+    return found;
   };
   // The unbounded primitives first, as in traverse().
-  for (uint32_t i = boundedCount_; i < items_.size(); ++i) intersect(i, live);
+  if (boundedCount_ < items_.size()) {
+    for (uint32_t i = boundedCount_; i < items_.size(); ++i)
+      hits.intersect(items_[i], i, lanes, all, tMin, tests, other);
+    farthest = *std::max_element(best, best + count);
+  }
+  // A leaf's primitives are tested against every ray: four rays cost one vector test,
+  // about what one ray's box test would cost to rule them out.
+  traversePacket(cone, farthest, enters, [&](uint32_t first, uint32_t n, const BvhNode&, int) {
+    for (uint32_t i = first; i < first + n; ++i) hits.intersect(items_[i], i, lanes, all, tMin, tests, other);
+    farthest = *std::max_element(best, best + count);
+    return false;
+  });
+  hits.write(all, out);
+}
+
+void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, double tMax,
+                        std::optional<ClosestHit>* out, uint64_t& tests) const {
+  LaneHits hits(lanes, live, tMax);
+  const double* best = hits.best;
+  auto other = [this](uint32_t i, const Ray& ray, double lo, double hi) { return intersectItem(i, ray, lo, hi); };
+  // The unbounded primitives first, as in traverse().
+  for (uint32_t i = boundedCount_; i < items_.size(); ++i)
+    hits.intersect(items_[i], i, lanes, live, tMin, tests, other);
   if (!nodes_.empty() && live != 0) {
     // Each ray's own float slab test, as traverse() makes it: a node's child is entered
     // when one live ray enters it (the double test's boxes and more, never fewer).
@@ -491,7 +479,8 @@ void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, dou
     Entry at{0, 0, tMinF, live};
     for (;;) {
       if (at.count > 0) {
-        for (uint32_t i = at.index; i < at.index + at.count; ++i) intersect(i, at.rays);
+        for (uint32_t i = at.index; i < at.index + at.count; ++i)
+          hits.intersect(items_[i], i, lanes, at.rays, tMin, tests, other);
       } else {
         const BvhNode& n = nodes_[at.index];
         float enter[kBvhWidth];
@@ -529,11 +518,7 @@ void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, dou
       at = stack[--top];
     }
   }
-  for (uint64_t m = live; m != 0; m &= m - 1) {
-    const int k = __builtin_ctzll(m);
-    if (owner[k] == kNone) out[k].reset();
-    else out[k] = ClosestHit{ShapeHit{best[k], hitPart[k], hitU[k], hitV[k]}, owner[k]};
-  }
+  hits.write(live, out);
 }
 
 namespace {

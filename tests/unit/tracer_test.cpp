@@ -42,19 +42,40 @@ bool sameBits(const Color& a, const Color& b) {
          std::memcmp(&a.b, &b.b, sizeof(double)) == 0;
 }
 
-TEST(Tracer, PacketShadingGivesEveryRayTheColourOfItsOwnTrace) {
-  const Scene scene = buildScene(loadSceneString(kScene, "tracer.xml"));
+// Mirrors and glass over a checkered floor under three lights, one of them inside the
+// glass: most packet rays spawn mirror and refracted rays whose hits (found and given their
+// shadows ahead, Tracer::shadowsAhead) lie in the shadows of spheres, boxes and each other,
+// so that POV-Ray's shadow cache, which shading applies to them, decides many tests.
+const char* kMirrorScene = R"(<scene>
+  <camera location="0 4 -9" look_at="0 1 0" right="1.6 0 0"/>
+  <light_source location="-4 9 -6" color="0.8 0.8 0.8"/>
+  <light_source location="5 5 -3" color="0.4 0.35 0.3"/>
+  <light_source location="0.5 1 0" color="0.3 0.3 0.3"/>
+  <plane normal="0 1 0" distance="0">
+    <pigment><checker color1="0.9 0.9 0.9" color2="0.1 0.2 0.5"/></pigment><finish reflection="0.3"/>
+  </plane>
+  <plane normal="0 0 -1" distance="-6"><pigment color="0.6 0.6 0.5"/><finish reflection="0.5"/></plane>
+  <sphere center="-1.5 1 0" radius="1"><pigment color="0.9 0.9 0.9"/><finish reflection="0.8" phong="0.5"/></sphere>
+  <sphere center="0.5 1 0" radius="0.9"><pigment color="1 1 1" filter="0.8"/><interior ior="1.5"/></sphere>
+  <sphere center="2.2 0.6 -1" radius="0.6"><pigment color="0.8 1 0.8" transmit="0.9"/><interior ior="1"/></sphere>
+  <sphere center="-0.3 2.6 1.5" radius="0.5"><pigment color="0.8 0.3 0.2"/></sphere>
+  <box corner1="1.5 0 1" corner2="3 2.5 2.5"><pigment color="0.7 0.7 0.8"/><finish reflection="0.6"/></box>
+  <box corner1="-3.5 0 -2" corner2="-2.5 0.8 -1"><pigment color="0.7 0.6 0.2" filter="0.5"/></box>
+</scene>)";
+
+// Packets of every size, their rays in a cone about random directions toward the scene,
+// each ray's colour and the counters held to trace()'s, bit for bit.
+void expectPacketsMatchTraces(const char* xml, const Vec3& origin, int rounds) {
+  const Scene scene = buildScene(loadSceneString(xml, "tracer.xml"));
   ASSERT_EQ(scene.effects & ~kEffects, 0u) << "the scene calls for effects the tracer below leaves out";
   RenderStats packetStats, aloneStats;
   Tracer<kEffects> packet(scene, packetStats), alone(scene, aloneStats);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> spread(-0.35, 0.35);
-  const Vec3 origin{0, 3, -8};
   std::vector<Ray> rays(kMaxPacket);
   std::vector<Color> colours(kMaxPacket);
   long rays4 = 0;
-  for (int round = 0; round < 600; ++round) {
-    // Packets of every size, their rays in a cone about a random direction toward the scene.
+  for (int round = 0; round < rounds; ++round) {
     const int count = 1 + round % kMaxPacket;
     const Vec3 axis = normalize(Vec3{spread(rng) * 3, -0.35 + 3 * spread(rng), 1});
     const double width = round % 3 == 0 ? 0.002 : 0.05;
@@ -78,6 +99,14 @@ TEST(Tracer, PacketShadingGivesEveryRayTheColourOfItsOwnTrace) {
   EXPECT_EQ(packetStats.refractedRays, aloneStats.refractedRays);
   EXPECT_GT(aloneStats.reflectedRays, 0u);
   EXPECT_GT(aloneStats.refractedRays, 0u);
+}
+
+TEST(Tracer, PacketShadingGivesEveryRayTheColourOfItsOwnTrace) {
+  expectPacketsMatchTraces(kScene, {0, 3, -8}, 600);
+}
+
+TEST(Tracer, SpawnedHitsShadowedAheadGiveTheColourOfTheirOwnTrace) {
+  expectPacketsMatchTraces(kMirrorScene, {0, 4, -9}, 600);
 }
 
 }  // namespace
