@@ -105,14 +105,21 @@ inline FloatColour diffuse(const WideColour& pigment, double intensity, const Fl
 // ComputePhongColour, ComputeSpecularColour: intensity x light colour.
 inline FloatColour highlight(const WideColour& light, double intensity) { return scaled(light, intensity); }
 
+// The Fresnel-like curve POV-Ray tints metallic highlights and reflections with, from the
+// cosine between the normal and the light or view direction: an acos outside [-1, 1] is NaN,
+// which max(0, F) turns into 0, as POV-Ray's min/max do.
+inline double metallicFresnel(double cosAngle) {
+  const double x = std::fabs(std::acos(cosAngle)) / 1.57079632679489661923;  // M_PI_2
+  const double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
+  return std::min(1.0, std::max(0.0, f));
+}
+
 // The same with a metallic tint (Metallic > 0): intensity x (light x (1 + m(1 - F) x
 // (pigment - 1))), the tint formed in float colours; F from the cosine nl between normal and
-// light, an acos outside [-1, 1] giving F = 0 as POV-Ray's min/max do with its NaN.
+// light.
 inline FloatColour metallicHighlight(const FloatColour& light, double intensity, double metallic, double nl,
                                      const FloatColour& pigment) {
-  const double x = std::fabs(std::acos(nl)) / 1.57079632679489661923;  // M_PI_2
-  double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
-  f = std::min(1.0, std::max(0.0, f));
+  const double f = metallicFresnel(nl);
   const FloatColour one{1.0f, 1.0f, 1.0f};
   return scaled(light * (one + scaled(pigment - one, metallic * (1.0 - f))), intensity);
 }

@@ -49,13 +49,9 @@ inline Reflectivity reflectivity(const ReflectionDesc& r, double cosI, double re
 }
 
 // The reflection's metallic tint: each channel times 1 + m(1 - F)(pigment - 1), F the same
-// Fresnel-like curve as the highlights' (an acos outside [-1, 1] gives NaN, which the
-// max(0, F) turns into 0, as in POV-Ray). `pigment` holds floats.
+// Fresnel-like curve as the highlights' (metallicFresnel). `pigment` holds floats.
 inline FloatColour metallicReflection(const FloatColour& rho, double metallic, double cosI, const Color& pigment) {
-  const double x = std::fabs(std::acos(cosI)) / 1.57079632679489661923;  // M_PI_2
-  double F = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
-  F = std::min(1.0, std::max(0.0, F));
-  const double k = metallic * (1.0 - F);
+  const double k = metallic * (1.0 - metallicFresnel(cosI));
   return scaled(rho, Color(1.0 + k * (pigment.r - 1.0), 1.0 + k * (pigment.g - 1.0), 1.0 + k * (pigment.b - 1.0)));
 }
 

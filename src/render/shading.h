@@ -3,29 +3,13 @@
 // POV-Ray's float colour operations (render/pov_secondary.h).
 #pragma once
 
-#include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "core/color.h"
 #include "core/vec3.h"
 #include "scene/scene_desc.h"
 
 namespace pvrt::shading {
-
-// Fresnel-like factor POV-Ray uses to tint metallic highlights and reflections;
-// `cosAngle` is the cosine between the normal and the light or view direction.
-inline double metallicFresnel(double cosAngle) {
-  const double x = std::acos(std::clamp(cosAngle, -1.0, 1.0)) / (std::numbers::pi / 2);
-  const double f = 0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903;
-  return std::clamp(f, 0.0, 1.0);
-}
-
-// 1 + m(1-F)(C - 1): the tint a metallic finish gives to highlights and reflections.
-inline Color metallicTint(double metallic, double fresnel, const Color& pigment) {
-  const double k = metallic * (1.0 - fresnel);
-  return {1.0 + k * (pigment.r - 1.0), 1.0 + k * (pigment.g - 1.0), 1.0 + k * (pigment.b - 1.0)};
-}
 
 // Phong highlight strength for unit view direction d, flipped normal n, unit light dir l.
 inline double phong(const FinishDesc& f, const Vec3& d, const Vec3& n, const Vec3& l) {
