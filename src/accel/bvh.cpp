@@ -169,10 +169,19 @@ Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray&
   return occlusionInCell<true>(buffer, index, ray, tMin, tMax, reach, tests, blocker, &nearest);
 }
 
+Occlusion Bvh::occlusionToLight(const LightBuffer& buffer, int index, const Ray& ray, double tMin, double tMax,
+                                double reach, uint64_t& tests, uint32_t& blocker, ClosestHit& nearest, double length,
+                                double drift, std::vector<uint32_t>& candidates) const {
+  const Listing listing{length, drift, &candidates};
+  return occlusionInCell<true>(buffer, index, ray, tMin, tMax, reach, tests, blocker, &nearest, &listing);
+}
+
 template <bool kNoteNearest>
 Occlusion Bvh::occlusionInCell(const LightBuffer& buffer, int index, const Ray& ray, double tMin, double tMax,
-                               double reach, uint64_t& tests, uint32_t& blocker, ClosestHit* nearest) const {
+                               double reach, uint64_t& tests, uint32_t& blocker, ClosestHit* nearest,
+                               const Listing* listing) const {
   const std::span<const LightBuffer::Entry> cell = buffer.list(index);
+  if (listing) listing->out->clear();
   bool transparent = false;
   // The nearest see-through hit (kNoteNearest): the first of equals in the order closestAmong
   // tests them, which puts the unbounded primitives first, so theirs is kept apart.
@@ -209,9 +218,12 @@ Occlusion Bvh::occlusionInCell(const LightBuffer& buffer, int index, const Ray& 
     if (e.near > reach) break;
     fetch(k + kAhead);
     if (test(e.primitive, bestT, best)) return Occlusion::Blocked;
+    if (listing && candidate(e.primitive, ray, listing->length, listing->drift)) listing->out->push_back(e.primitive);
   }
-  for (uint32_t i : buffer.everywhere())
+  for (uint32_t i : buffer.everywhere()) {
     if (test(i, bestT, best)) return Occlusion::Blocked;
+    if (listing && !items_[i].noShadow) listing->out->push_back(i);
+  }
   for (uint32_t i = boundedCount_; i < items_.size(); ++i)
     if (test(i, unboundedT, unbounded)) return Occlusion::Blocked;
   if constexpr (kNoteNearest) {
@@ -234,22 +246,31 @@ void Bvh::shadowCandidates(const LightBuffer& buffer, int index, const Ray& ray,
   out.clear();
   for (const LightBuffer::Entry& e : buffer.list(index)) {
     if (e.near > reach) break;
-    const PrimitiveRecord& it = items_[e.primitive];
-    if (it.noShadow) continue;
-    if (it.kind == PrimitiveRecord::Kind::Sphere) {
-      // The sphere test's squared half chord, r^2 - |perp|^2, for this line. A segment
-      // starting within `drift` of it changes |perp|^2 by at most 2 x drift + drift^2, and
-      // rounding by some 1e-15 (x^2 + r^2): a chord this far below zero stays a miss.
-      const Vec3 oc = it.sphere.center - ray.origin;
-      const Vec3 perp = oc - ray.dir * dot(oc, ray.dir);
-      const double r2 = it.sphere.radius * it.sphere.radius;
-      const double x = pvrt::length(oc) + length;
-      if (r2 - dot(perp, perp) < -(1e-9 * (x * x + r2) + 4 * x * drift)) continue;
-    }
-    out.push_back(e.primitive);
+    if (candidate(e.primitive, ray, length, drift)) out.push_back(e.primitive);
   }
   for (uint32_t i : buffer.everywhere())
     if (!items_[i].noShadow) out.push_back(i);
+}
+
+bool Bvh::candidate(uint32_t i, const Ray& ray, double length, double drift) const {
+  const PrimitiveRecord& it = items_[i];
+  if (it.noShadow) return false;
+  if (it.kind != PrimitiveRecord::Kind::Sphere) return true;
+  // The sphere test's squared half chord, r^2 - |perp|^2, for this line. A segment
+  // starting within `drift` of it changes |perp|^2 by at most 2 x drift + drift^2, and
+  // rounding by some 1e-15 (x^2 + r^2): a chord this far below zero stays a miss.
+  const Vec3 oc = it.sphere.center - ray.origin;
+  const Vec3 perp = oc - ray.dir * dot(oc, ray.dir);
+  const double r2 = it.sphere.radius * it.sphere.radius;
+  const double chord = r2 - dot(perp, perp);
+  if (!(chord < 0)) return true;  // kept below whatever x is
+  // x = |oc| + length, the bound below grows with x, and the 1-norm is at least |oc| (widened
+  // past any rounding of either): a chord below the bound for that larger x is below it for x
+  // itself, found with no square root.
+  const double wide = (std::fabs(oc.x) + std::fabs(oc.y) + std::fabs(oc.z)) * (1 + 1e-12) + length;
+  if (chord < -(1e-9 * (wide * wide + r2) + 4 * wide * drift)) return false;
+  const double x = pvrt::length(oc) + length;
+  return !(chord < -(1e-9 * (x * x + r2) + 4 * x * drift));
 }
 
 std::optional<ClosestHit> Bvh::closestAmong(std::span<const uint32_t> candidates, const Ray& ray, double tMin,

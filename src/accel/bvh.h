@@ -164,6 +164,12 @@ class Bvh {
   // (unbounded primitives first, then the cell's list in order, then the everywhere ones).
   Occlusion occlusionToLight(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
                              double reach, uint64_t& tests, uint32_t& blocker, ClosestHit& nearest) const;
+  // The same, and, when the answer is Transparent, in `candidates` what shadowCandidates(buffer,
+  // cell, ray, length, reach, drift, candidates) would list (read from the cell while the
+  // query tests it, instead of in a second pass): the first step's candidates of the walk.
+  Occlusion occlusionToLight(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
+                             double reach, uint64_t& tests, uint32_t& blocker, ClosestHit& nearest, double length,
+                             double drift, std::vector<uint32_t>& candidates) const;
   // For a walk of shadow segments along one line toward `buffer`'s light (see-through
   // surfaces crossed one by one, each segment starting where the last one stopped): the
   // shadow-casting primitives any of them may meet. Each segment must meet
@@ -224,9 +230,19 @@ class Bvh {
                              uint64_t& tests, PacketNearest* nearest = nullptr) const;
 
  private:
+  // What shadowCandidates' walks need of a query's cell: the line's length and drift, and
+  // where the candidates go.
+  struct Listing {
+    double length, drift;
+    std::vector<uint32_t>* out;
+  };
   template <bool kNoteNearest>
-  Occlusion occlusionInCell(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax,
-                            double reach, uint64_t& tests, uint32_t& blocker, ClosestHit* nearest) const;
+  Occlusion occlusionInCell(const LightBuffer& buffer, int cell, const Ray& ray, double tMin, double tMax, double reach,
+                            uint64_t& tests, uint32_t& blocker, ClosestHit* nearest,
+                            const Listing* listing = nullptr) const;
+  // Whether shadowCandidates lists primitive i for a walk along `ray`'s line: not a
+  // no_shadow one, nor a sphere that the line passes by so far that no step can reach it.
+  bool candidate(uint32_t i, const Ray& ray, double length, double drift) const;
   template <class Enters, class Leaf>
   void traversePacket(const PacketCone& cone, const double& sHi, Enters&& enters, Leaf&& leaf) const;
   // The shadow queries' test of primitive i: true when it is opaque and hit in (tMin, tMax)

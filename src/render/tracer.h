@@ -69,7 +69,9 @@ class Tracer {
       : scene_(scene),
         stats_(stats),
         servesSquared_(squareBound(servesBound(scene.tol.shadow))),
-        shadowSlabLimit_(shadowSlabLimit(scene.tol)) {}
+        shadowSlabLimit_(shadowSlabLimit(scene.tol)),
+        pointCellsFirst_(std::any_of(scene.lightBuffers.begin(), scene.lightBuffers.end(),
+                                     [](const LightBuffer& b) { return b.valid(); })) {}
 
   // A spawned ray's weight as POV-Ray passes it to TraceRay: a float (COLC), compared with
   // adc_bailout (a double) on entry. Rounded here, before the comparison, so that a weight
@@ -332,7 +334,7 @@ class Tracer {
     if constexpr ((E & kShadows) != 0) {
       __builtin_prefetch(&m);
       // A packet's primary hit has its shadows answered already (tracePacket): no cells to read.
-      if (scene_.prefetchLightBuffers && knownRay_ < 0) prefetchShadowCells(p);
+      if (pointCellsFirst_ && knownRay_ < 0) findShadowCells(p, n);
     }
     const Surface& s = scene_.materials.surface(m);
     const FinishDesc& f = s.finish;
@@ -344,9 +346,9 @@ class Tracer {
     povcolour::FloatColour lit = povcolour::ambient(pig.rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha);
     // Shadow answers found beforehand for this hit by tracePacket (only for a primary hit).
     const int known = std::exchange(knownRay_, -1);
-    // The cells found for the prefetch above answer the shadow segments from p, with no
-    // second lookup (see shadowFactor); nested shading, after this loop, finds its own.
-    pointCells_ = scene_.prefetchLightBuffers && known < 0;
+    // The cells found above answer the shadow segments from p, with no second lookup (see
+    // shadowFactor); nested shading, after this loop, finds its own.
+    pointCells_ = pointCellsFirst_ && known < 0;
     pointShadowOrigin_.reset();
     levelOneShadows_ = level == 1;
     const povcolour::WideColour pigment = povcolour::widened(povcolour::rounded(pig.rgb));  // for every light
@@ -624,16 +626,21 @@ class Tracer {
     return true;
   }
 
-  // Starts fetching the light-buffer cells that the shadow segments from p will read, all
-  // lights' at once so that their cache misses overlap instead of coming one by one.
-  void prefetchShadowCells(const Vec3& p) {
+  // Finds the light-buffer cells that the shadow segments from p will read, all lights' at
+  // once, so that their lookups (two divisions each) overlap instead of each waiting at the
+  // head of its segment's query; in a big scene also starts fetching them, so that their
+  // cache misses overlap too. A light behind the surface (normal n) gets none (-1): it has no
+  // segment (and a segment without a cell would find its own).
+  void findShadowCells(const Vec3& p, const Vec3& n) {
     const size_t lights = std::min(scene_.lights.size(), scene_.lightBuffers.size());
     cells_.resize(lights);
     for (size_t j = 0; j < lights; ++j) {
-      cells_[j] = scene_.lightBuffers[j].cellIndexOf(p - scene_.lights[j].location);
-      scene_.lightBuffers[j].prefetchCell(cells_[j]);
+      const Vec3 fromLight = p - scene_.lights[j].location;
+      cells_[j] = dot(n, fromLight) >= 0 ? -1 : scene_.lightBuffers[j].cellIndexOf(fromLight);
+      if (scene_.prefetchLightBuffers) scene_.lightBuffers[j].prefetchCell(cells_[j]);
     }
-    for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(cells_[j]);
+    if (scene_.prefetchLightBuffers)
+      for (size_t j = 0; j < lights; ++j) scene_.lightBuffers[j].prefetchList(cells_[j]);
   }
 
   // Light j's buffer, when it has one that was built.
@@ -1004,11 +1011,14 @@ class Tracer {
     const double tol = scene_.tol.shadow;
     uint32_t blocker = 0;
     ClosestHit first;
+    // From the buffer, it also lists the walk's candidates for its first step (orderedTransmittance).
     const Occlusion found =
         buffer ? scene_.bvh.occlusionToLight(*buffer, cell, segment, tol, dist - tol, bufferReach(dist, shift),
-                                             stats_.intersectionTests, blocker, first)
+                                             stats_.intersectionTests, blocker, first, dist, LightBuffer::kMargin * tol,
+                                             shadowCandidates_)
                : scene_.bvh.occlusion(segment, tol, dist - tol, stats_.intersectionTests, blocker);
-    return transmittanceAfter(found, blocker, origin, dir, dist, inside, buffer, cell, buffer ? &first : nullptr);
+    return transmittanceAfter(found, blocker, origin, dir, dist, inside, buffer, cell, buffer ? &first : nullptr,
+                              buffer != nullptr);
   }
 
   // POV-Ray's shadow cache: the object that last blocked this light is tried first.
@@ -1026,13 +1036,13 @@ class Tracer {
   // answer (`blocker`: the opaque object it found).
   Color transmittanceAfter(Occlusion found, uint32_t blocker, const Vec3& origin, const Vec3& dir, double dist,
                            const InteriorList& inside, const LightBuffer* buffer = nullptr, int cell = -1,
-                           const ClosestHit* first = nullptr) {
+                           const ClosestHit* first = nullptr, bool listed = false) {
     switch (found) {
       case Occlusion::Clear: return Color(1.0);
       case Occlusion::Blocked: cacheEntry(cacheSlot_, levelOneShadows_) = blocker; return {};  // tried first next time
       case Occlusion::Transparent: break;
     }
-    return orderedTransmittance(origin, dir, dist, inside, buffer, cell, first);
+    return orderedTransmittance(origin, dir, dist, inside, buffer, cell, first, listed);
   }
 
   // The product of the filters of every surface the segment crosses, nearest first, or
@@ -1044,21 +1054,26 @@ class Tracer {
   // by walks of the tree. `cell`, when not -1, is the buffer's cell of -dir (or of a
   // direction a few ulps off it). `first`, when given, is the first step's answer, found
   // by the segment's shadow query (Bvh::occlusionToLight, or a packet's PacketNearest).
+  // `firstListed`: shadowCandidates_ holds the first step's candidates, listed by that query
+  // from `cell` for this segment (over its query's reach, which holds the walk's).
   Color orderedTransmittance(Vec3 origin, const Vec3& dir, double dist, InteriorList inside,
-                             const LightBuffer* buffer = nullptr, int cell = -1, const ClosestHit* first = nullptr) {
+                             const LightBuffer* buffer = nullptr, int cell = -1, const ClosestHit* first = nullptr,
+                             bool firstListed = false) {
     const double tol = scene_.tol.shadow;
     // Every step that bufferServes lets through starts within this of the light's ray, so
     // within twice this of the first such step's line.
     const double drift = LightBuffer::kMargin * tol;
     bool listed = false;
     Color k(1.0);
-    for (;;) {
+    for (;; firstListed = false) {
       const Ray step{origin, dir};
       bool serves = false;
       if (buffer) {
         const Vec3 fromLight = origin - buffer->light();
         serves = bufferServesOffset(cross(fromLight, dir));
-        if (serves && !listed) {
+        if (serves && !listed && firstListed) {
+          listed = true;
+        } else if (serves && !listed) {
           const double reach = length(fromLight) * (1 + 1e-9);
           if (cell >= 0) {
             scene_.bvh.shadowCandidates(*buffer, cell, step, dist, reach, drift, shadowCandidates_);
@@ -1229,6 +1244,7 @@ class Tracer {
   RenderStats& stats_;
   double servesSquared_;  // the largest squared offset whose length bufferServes lets through
   double shadowSlabLimit_;  // shadow segments start at the hit point below this slab (render/spawn.h)
+  bool pointCellsFirst_;    // whether shadeAt finds its point's light-buffer cells first (any buffer)
   static constexpr uint32_t kNoCache = ~0u;
   // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
   std::optional<ClosestHit> hits_[kMaxPacket];
@@ -1249,7 +1265,7 @@ class Tracer {
   uint32_t blocker_[kMaxPacket];
   uint64_t pixelStarts_ = 1;
   std::vector<PacketLight> known_;  // one per light
-  std::vector<int> cells_;          // prefetchShadowCells: each light's cell for the point
+  std::vector<int> cells_;          // findShadowCells: each light's cell for the point
   bool pointCells_ = false;          // whether cells_ are those of the point shadeAt's light loop shades
   // The shadow segments' origin above the point shadeAt's light loop shades, and its
   // distance from the point, once shadowFactor has found them.

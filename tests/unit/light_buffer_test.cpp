@@ -60,6 +60,11 @@ struct Answer {
   // viaCell again, noting the nearest see-through hit (meaningful when Transparent).
   Occlusion viaCellNoting;
   ClosestHit noted;
+  // viaCellNoting again, listing the walk's candidates as it goes, and shadowCandidates'
+  // list from the cell (meaningful when Transparent).
+  Occlusion viaCellListing;
+  ClosestHit listingNoted;
+  std::vector<uint32_t> listed, fromCell;
 };
 
 // Up to 8 steps of such a walk from `segment` toward a light `dist` away; `nearest` answers
@@ -108,11 +113,13 @@ Answer shadowOf(const Bvh& bvh, const LightBuffer& buffer, uint32_t i, const Vec
   a.walkViaBuffer = walk(segment, dist, [&](const Ray& step, double left) {
     return bvh.closestAmong(candidates, step, kTol, left - kTol, tests);
   });
-  std::vector<uint32_t> fromCell;
+  std::vector<uint32_t>& fromCell = a.fromCell;
   bvh.shadowCandidates(buffer, cell, segment, dist, (dist + shift) * (1 + 1e-9), drift, fromCell);
   a.walkViaCell = walk(segment, dist, [&](const Ray& step, double left) {
     return bvh.closestAmong(fromCell, step, kTol, left - kTol, tests);
   });
+  a.viaCellListing = bvh.occlusionToLight(buffer, cell, segment, kTol, dist - kTol, (dist + shift) * (1 + 1e-9), tests,
+                                          blocker, a.listingNoted, dist, drift, a.listed);
   return a;
 }
 
@@ -145,6 +152,14 @@ void expectBufferAgrees(const std::vector<Primitive>& prims, const Vec3& light, 
       ASSERT_FALSE(a.walkViaCell.empty()) << "segment " << k;
       EXPECT_EQ(a.noted.primitive, a.walkViaCell[0].primitive) << "segment " << k;
       EXPECT_EQ(a.noted.hit.t, a.walkViaCell[0].hit.t) << "segment " << k;
+    }
+    // Listing the walk's candidates on the way changes neither the answer nor the note, and
+    // a see-through answer lists exactly what shadowCandidates lists from the cell.
+    ASSERT_EQ(int(a.viaCellListing), int(a.viaCell)) << "segment " << k;
+    if (a.viaCell == Occlusion::Transparent) {
+      EXPECT_EQ(a.listingNoted.primitive, a.noted.primitive) << "segment " << k;
+      EXPECT_EQ(a.listingNoted.hit.t, a.noted.hit.t) << "segment " << k;
+      EXPECT_EQ(a.listed, a.fromCell) << "segment " << k;
     }
     crossings += a.walkViaTree.size();
     count += a.viaTree == Occlusion::Blocked;
@@ -304,6 +319,72 @@ TEST(LightBuffer, AgreesOnSegmentsThatGrazeSpheres) {
   }
   EXPECT_GT(blocked, 10000);
   EXPECT_GT(clear, 1000);
+}
+
+// A walk's candidates leave a sphere out only where the bound on its chord does, found with a
+// square root for each sphere (as shadowCandidates once did): spheres that the line passes by
+// on either side of that bound, by up to 2% of it, some of them also within the cheaper bound
+// that shadowCandidates tries first.
+TEST(LightBuffer, ShadowCandidatesLeaveOutWhatTheChordBoundLeavesOut) {
+  Maker gen(23);
+  const Vec3 light{0.25, 100, -0.5};
+  const Vec3 from{0, 0, 0};
+  const double dist = length(light - from);
+  const Ray line{from, (light - from) / dist};
+  const double drift = LightBuffer::kMargin * kTol, reach = dist * (1 + 1e-9);
+  // The bound for a sphere whose centre is oc from the line's origin (shadowCandidates').
+  auto bound = [&](const Vec3& oc, double r) {
+    const double x = length(oc) + dist;
+    return -(1e-9 * (x * x + r * r) + 4 * x * drift);
+  };
+  std::vector<Primitive> prims;
+  for (int i = 0; i < 600; ++i) {
+    const double r = gen.uniform(0.05, 2), along = gen.uniform(5, 80);
+    const Vec3 foot = from + line.dir * along;
+    const Vec3 side = normalize(cross(line.dir, gen.direction()));
+    // The chord r^2 - d^2 at a distance d = r + delta from the line is about -2 r delta.
+    const double threshold = -bound(foot + side * r - from, r) / (2 * r);
+    Primitive p;
+    // Every tenth crosses the line, so that the segment's query answers see-through.
+    const double off = i % 10 == 0 ? 0.5 * r : r + threshold * (1 + gen.uniform(-0.02, 0.02));
+    p.shape = SphereShape{foot + side * off, r};
+    p.object = uint32_t(i);
+    p.opaque = false;
+    prims.push_back(p);
+  }
+  const Bvh bvh(prims);
+  const LightBuffer buffer(light, bvh.occluders());
+  ASSERT_TRUE(buffer.valid());
+  const int cell = buffer.cellIndexOf(from - light);
+  ASSERT_GE(cell, 0);
+  std::vector<uint32_t> expected;
+  int left = 0;
+  for (const LightBuffer::Entry& e : buffer.list(cell)) {
+    if (e.near > reach) break;
+    const SphereShape s = std::get<SphereShape>(bvh.primitive(e.primitive).shape);
+    const Vec3 oc = s.center - from;
+    const Vec3 perp = oc - line.dir * dot(oc, line.dir);
+    if (s.radius * s.radius - dot(perp, perp) < bound(oc, s.radius)) {
+      ++left;
+      continue;
+    }
+    expected.push_back(e.primitive);
+  }
+  for (uint32_t i : buffer.everywhere()) expected.push_back(i);
+  EXPECT_GT(left, 100);
+  EXPECT_GT(expected.size(), 100u);
+  std::vector<uint32_t> listed;
+  bvh.shadowCandidates(buffer, cell, line, dist, reach, drift, listed);
+  EXPECT_EQ(listed, expected);
+  // And as the segment's query lists them on the way (every sphere is see-through).
+  uint64_t tests = 0;
+  uint32_t blocker = 0;
+  ClosestHit nearest;
+  std::vector<uint32_t> onTheWay;
+  const Occlusion found = bvh.occlusionToLight(buffer, cell, line, kTol, dist - kTol, reach, tests, blocker, nearest,
+                                               dist, drift, onTheWay);
+  ASSERT_EQ(int(found), int(Occlusion::Transparent));
+  EXPECT_EQ(onTheWay, expected);
 }
 
 // The cones cut the lists: fewer entries than the boxes' footprints alone give.
