@@ -34,7 +34,7 @@ def figures(st):
         r.update(bvh_nodes=bvh["nodes"], bvh_kib=bvh["bytes"] / 1024.0, bvh_build_s=bvh["build_seconds"])
     r["structures_kib"] = (bvh.get("bytes", 0) + st.get("light_buffers", {}).get("bytes", 0)) / 1024.0
     counts = st.get("counts", {})
-    for key in ("primary_rays", "shadow_rays", "reflected_rays", "refracted_rays", "transmitted_rays", "total_rays",
+    for key in ("primary_rays", "vista_rays", "shadow_rays", "reflected_rays", "refracted_rays", "transmitted_rays", "total_rays",
                 "intersection_tests"):
         if key in counts:
             r[key] = counts[key]

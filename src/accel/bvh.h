@@ -94,6 +94,8 @@ class Bvh {
   // The primitives, bounded ones first in the leaves' order, then the unbounded ones.
   size_t size() const { return items_.size(); }
   bool empty() const { return items_.empty(); }
+  // The bounded primitives are [0, boundedCount()), the unbounded ones the rest.
+  uint32_t boundedCount() const { return boundedCount_; }
   // Primitive i whole: a copy, made again from its record for a sphere or a plane (for
   // tests and tools; the queries below read the records).
   Primitive primitive(uint32_t i) const;

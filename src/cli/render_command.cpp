@@ -137,6 +137,7 @@ void printStats(const RenderOptions& o, const RenderSettings& s, const Scene& sc
   fmt::print("  Objects               {} primitives, {} lights\n", scene.bvh.size(),
              scene.lights.size());
   line("Primary rays", t.primaryRays);
+  line("  of them, by vista", t.vistaRays);
   line("Shadow rays", t.shadowRays);
   line("Reflected rays", t.reflectedRays);
   line("Refracted rays", t.refractedRays);

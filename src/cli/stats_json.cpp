@@ -14,6 +14,7 @@ using nlohmann::ordered_json;  // keys in the order written, as --stats prints t
 
 ordered_json counts(const RenderStats& t) {
   return {{"primary_rays", t.primaryRays},
+          {"vista_rays", t.vistaRays},
           {"shadow_rays", t.shadowRays},
           {"reflected_rays", t.reflectedRays},
           {"refracted_rays", t.refractedRays},

@@ -380,13 +380,15 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
   mineStats.idleSeconds = idle;
   mineStats.wallSeconds = secondsSince(t0);
   const RenderStats c = local.counts();
-  const std::vector<double> packed = {mineStats.computeSeconds, mineStats.commSeconds, mineStats.idleSeconds,
-                                      mineStats.wallSeconds, double(local.items()), double(local.pixels()),
-                                      double(c.primaryRays), double(c.shadowRays), double(c.reflectedRays),
-                                      double(c.refractedRays), double(c.transmittedRays),
-                                      double(c.intersectionTests), double(c.shadingOps),
-                                      double(cluster::counters().bytesSent), double(c.nonFiniteSamples),
-                                      double(c.nonFinitePixels)};
+  const std::vector<double> packed = {mineStats.computeSeconds,   mineStats.commSeconds,
+                                      mineStats.idleSeconds,      mineStats.wallSeconds,
+                                      double(local.items()),      double(local.pixels()),
+                                      double(c.primaryRays),      double(c.shadowRays),
+                                      double(c.reflectedRays),    double(c.refractedRays),
+                                      double(c.transmittedRays),  double(c.intersectionTests),
+                                      double(c.shadingOps),       double(cluster::counters().bytesSent),
+                                      double(c.nonFiniteSamples), double(c.nonFinitePixels),
+                                      double(c.vistaRays)};
   const std::vector<double> gathered = cluster::gatherFixed(packed);
   // Thread counts may differ between ranks: each rank's figures are prefixed by their count.
   std::vector<float> figures = local.threadFigures();
@@ -418,6 +420,7 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
     rs.pixels = long(g[5]);
     rs.counts = {uint64_t(g[6]), uint64_t(g[7]), uint64_t(g[8]), uint64_t(g[9]), uint64_t(g[10]), uint64_t(g[11]),
                  uint64_t(g[12]), uint64_t(g[14]), uint64_t(g[15])};
+    rs.counts.vistaRays = uint64_t(g[16]);
     rs.bytesSent = g[13];
     const size_t threads = size_t(threadFigures[at++]);
     for (size_t t = 0; t < threads; ++t, at += 4) {

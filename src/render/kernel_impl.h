@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "render/kernel.h"
 #include "render/pixel_value.h"
 #include "render/tracer.h"
+#include "render/vista.h"
 
 namespace pvrt {
 
@@ -33,6 +35,8 @@ inline int pixelsPerPacket(size_t raysPerPixel) {
 class PixelOut {
  public:
   PixelOut(Image& image, PassBuffers* pass, RenderStats& stats) : image_(image), pass_(pass), stats_(stats) {}
+  // Whether start() gives sums so far (a later pass), not zero.
+  bool resumes() const { return pass_ && pass_->resume; }
   PixelSum start(int x, int y) const {
     if (!pass_ || !pass_->resume) return {};
     const float* p = image_.row(y) + size_t(x) * 3;
@@ -83,33 +87,77 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
   };
   const int perPixel = total - firstSample;
   const uint64_t pixelStarts = restarts(firstSample, perPixel);
-  // With the same offsets for every pixel, the camera's quotients once per column and row.
+  // With the same offsets for every pixel, the camera's quotients once per column and row,
+  // and the pixels whose rays surely meet nothing. Those get the background without their
+  // rays being made or traced, where each pixel starts its own shadow cache (then whether
+  // a pixel's rays went with its neighbours' or not, it leaves the next pixel nothing).
   std::optional<CameraGrid> grid;
+  std::optional<VistaMask> vista;
   if (sampler.sameOffsetsEveryPixel()) {
     sampler.offsets(rect.x0, rect.y0, offsets);
     grid.emplace(scene.camera, offsets, rect.x0, rect.x1, w, h);
+    if (scene.vista.usable() && (pixelStarts & 1)) {
+      vista.emplace(scene.vista, scene.bvh, rect, w, h, offsets);
+      if (!vista->any()) vista.reset();
+    }
   }
+  // A clear pixel's value: the background's colour for each of its rays, summed as any
+  // pixel's are. Every pixel starts its own shadow cache (above), so a clear one leaves the
+  // tracer nothing to do for it.
+  PixelSum skySum;
+  for (int k = 0; k < perPixel; ++k) skySum.add(scene.background);
+  const Color& bg = scene.background;
+  const uint64_t skyNonFinite =
+      std::isfinite(bg.r) && std::isfinite(bg.g) && std::isfinite(bg.b) ? 0 : uint64_t(perPixel);
+  auto skyPixel = [&](int px, int py) {
+    PixelSum sum = skySum;
+    if (out.resumes()) {
+      sum = out.start(px, py);
+      for (int k = 0; k < perPixel; ++k) sum.add(scene.background);
+    }
+    stats.primaryRays += uint64_t(perPixel);
+    stats.vistaRays += uint64_t(perPixel);
+    stats.nonFiniteSamples += skyNonFinite;
+    out.finish(px, py, sum, size_t(total), skyNonFinite == 0);
+  };
   for (int y = rect.y0; y < rect.y1; ++y) {
     if (grid) grid->setRow(y);
     for (int x = rect.x0; x < rect.x1; ++x) {
       if (group > 1 && x % group == 0 && x + group <= rect.x1) {
+        // The group's clear pixels leave its packet (a packet gives each ray the answer it
+        // would get alone).
+        unsigned clear = 0;
+        if (vista)
+          for (int i = 0; i < group; ++i) clear |= unsigned(vista->clear(x + i, y)) << i;
         tracer.beginPixel();
         size_t first[kMaxPacketPixels + 1] = {};  // pixel i's rays are [first[i], first[i + 1])
         uint64_t starts = 0;
         for (int i = 0; i < group; ++i) {
+          if (clear >> i & 1u) {
+            first[i + 1] = first[i];
+            continue;
+          }
           if (!grid) {
             sampler.offsets(x + i, y, offsets);
             scene.camera.rays(x + i, y, offsets.data(), perPixel, w, h, rays.data() + first[i]);
+          } else if (clear) {
+            grid->rays(x + i, 0, perPixel, rays.data() + first[i]);
           }
           first[i + 1] = first[i] + size_t(perPixel);
           starts |= pixelStarts << first[i];
         }
-        if (grid) grid->rays(x, group, rays.data());
-        stats.primaryRays += uint64_t(first[group]);
-        tracer.setPixelStarts(starts);
-        tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
+        if (grid && !clear) grid->rays(x, group, rays.data());
+        if (first[group] > 0) {
+          stats.primaryRays += uint64_t(first[group]);
+          tracer.setPixelStarts(starts);
+          tracer.tracePacket(rays.data(), int(first[group]), scene.cameraInteriors, colors.data());
+        }
         for (int i = 0; i < group; ++i) {
-          Color* c = colors.data() + first[i];
+          if (clear >> i & 1u) {
+            skyPixel(x + i, y);
+            continue;
+          }
+          const Color* c = colors.data() + first[i];
           const size_t n = first[i + 1] - first[i];
           const bool finite = finiteSamples(c, n, stats);
           PixelSum sum = out.start(x + i, y);
@@ -122,6 +170,11 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
       if (!grid) sampler.offsets(x, y, offsets);
       const int n = perPixel;
       const uint64_t before = stats.work();
+      if (vista && vista->clear(x, y)) {
+        skyPixel(x, y);
+        if (load) load[size_t(y) * w + x] += float(stats.work() - before);
+        continue;
+      }
       PixelSum sum = out.start(x, y);
       bool finite = true;
       if (size_t(n) < kMinPacket) {

@@ -326,6 +326,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   }
   buildLightBuffers(s, options.memoryLimit, !options.memoryLimitGiven);
   interrupt::check();
+  s.vista = Vista(s.camera, s.bvh);
   return s;
 }
 

@@ -12,6 +12,7 @@
 #include "render/light.h"
 #include "render/material.h"
 #include "render/spawn.h"
+#include "render/vista.h"
 #include "scene/scene_desc.h"
 
 namespace pvrt {
@@ -63,6 +64,7 @@ struct Scene {
   // scene.cpp).
   bool packetShadowsFromBuffers = false;
   InteriorList cameraInteriors;  // objects whose inside contains the camera
+  Vista vista;                   // which camera rays surely meet nothing (render/vista.h)
   EffectSet effects = 0;         // kernel effects (supersampling is added per render)
   RayTolerances tol;             // minimum depths and maximum distance, in the scene's unit
 };

@@ -19,6 +19,9 @@ struct RenderStats {
   // (written as +-FLT_MAX).
   uint64_t nonFiniteSamples = 0;
   uint64_t nonFinitePixels = 0;
+  // Camera rays (counted in primaryRays too) that the vista found to meet nothing, so that
+  // they were given the background without being made or traced (render/vista.h).
+  uint64_t vistaRays = 0;
 
   uint64_t totalRays() const {
     return primaryRays + shadowRays + reflectedRays + refractedRays + transmittedRays;
@@ -37,6 +40,7 @@ struct RenderStats {
     shadingOps += o.shadingOps;
     nonFiniteSamples += o.nonFiniteSamples;
     nonFinitePixels += o.nonFinitePixels;
+    vistaRays += o.vistaRays;
     return *this;
   }
 };

@@ -14,7 +14,7 @@ text = open(sys.argv[2]).read()
 assert j["format"] == "pvrt-stats 1", j["format"]
 assert j["image"] == {"width": 64, "height": 40, "rays_per_pixel": 5, "sampler": "pov", "spp": 4}, j["image"]
 assert j["backend"]["workers"] == 2 and len(j["workers"]) == 2, j["backend"]
-for label, key in [("Primary rays", "primary_rays"), ("Shadow rays", "shadow_rays"), ("Reflected rays", "reflected_rays"),
+for label, key in [("Primary rays", "primary_rays"), ("of them, by vista", "vista_rays"), ("Shadow rays", "shadow_rays"), ("Reflected rays", "reflected_rays"),
                    ("Total rays", "total_rays"), ("Intersection tests", "intersection_tests"),
                    ("Shading operations", "shading_operations")]:
     want = int(re.search(r"^\s*" + label + r"\s+(\d+)", text, re.M)[1])
