@@ -1054,7 +1054,15 @@ TEST(XmlLoader, ErrorWrongRoot) {
 }
 
 TEST(XmlLoader, ErrorTextContent) {
-  EXPECT_SCENE_ERROR("<scene>\nhello\n</scene>", "t.xml:1: error: scene: unexpected text \"hello\"");
+  // The line is the text's own, not its element's: <scene> starts on line 1 of a file whose
+  // stray text may be on line 900 (it was reported on line 1).
+  EXPECT_SCENE_ERROR("<scene>\nhello\n</scene>", "t.xml:2: error: scene: unexpected text \"hello\"");
+  EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\"/>\n\n  \n  x\n<plane/>"),
+                     "t.xml:5: error: scene: unexpected text \"x\"");
+  EXPECT_SCENE_ERROR("<scene>\r\n<plane/>\r\n\r\n\xc2\xa0\r\n</scene>\r\n",
+                     "t.xml:4: error: scene: unexpected text \"\xc2\xa0\"");
+  EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">\n\n1</sphere>"),
+                     "t.xml:4: error: sphere: unexpected text \"1\"");
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">1</sphere>"),
                      "t.xml:2: error: sphere: unexpected text \"1\"");
   EXPECT_SCENE_ERROR(inScene("<camera>\n<translate v=\"0 0 0\">x</translate></camera>"),
@@ -1065,6 +1073,14 @@ TEST(XmlLoader, ErrorTextContent) {
                      "t.xml:2: error: light_source: unexpected text \"on\"");
   EXPECT_SCENE_ERROR(inScene("<background color=\"1\"><![CDATA[x]]></background>"),
                      "t.xml:2: error: background: unexpected text \"x\"");
+  // Before the root too (tinyxml2 keeps it there, and the file loaded): a second byte order
+  // mark, or a stray word.
+  EXPECT_SCENE_ERROR("junk<scene/>", "t.xml:1: error: xml: unexpected text \"junk\" outside the <scene> element");
+  EXPECT_SCENE_ERROR("<!-- a scene -->\n\n  x\n<scene>\n</scene>",
+                     "t.xml:3: error: xml: unexpected text \"x\" outside the <scene> element");
+  EXPECT_SCENE_ERROR("\xef\xbb\xbf\xef\xbb\xbf<scene/>",
+                     "t.xml:1: error: xml: unexpected text \"\xef\xbb\xbf\" outside the <scene> element");
+  EXPECT_NO_THROW(loadSceneString("\xef\xbb\xbf \n<!-- x -->\n<scene/>\n", "t.xml"));
   // Long text is cut to its first 20 characters, and "..." says so.
   EXPECT_SCENE_ERROR(inScene("<mesh><triangle p1=\"0 0 0\" p2=\"1 0 0\" p3=\"0 1 0\">abcdefghijklmnopqrstuvwxyz"
                              "</triangle></mesh>"),
