@@ -22,12 +22,22 @@ Affine Affine::then(const Affine& next) const {
 
 std::optional<Affine> Affine::inverse() const {
   const double det = determinant();
-  double scale = 0;
-  for (const auto& row : m)
-    for (double v : row) scale = std::fmax(scale, std::fabs(v));
-  // Relative test: a matrix whose determinant is tiny next to its entries is degenerate.
-  if (!std::isfinite(det) || scale == 0 || std::fabs(det) <= 1e-14 * scale * scale * scale)
-    return std::nullopt;
+  if (!std::isfinite(det) || det == 0) return std::nullopt;
+  // Relative test, blind to each axis's own scale: |det| against the product of the rows'
+  // lengths and against that of the columns' (Hadamard: each product is at least |det|, and
+  // equal to it when the rows, or the columns, are orthogonal). A degenerate matrix has rows
+  // that nearly depend on each other and columns that do too. A scale of 1e9 along one axis
+  // only, or one turned before or after such a scale, is not: its rows or its columns are
+  // orthogonal. (Against the largest entry cubed, scale <1e9, 1, 1> counted as singular.)
+  double rowRatio = std::fabs(det), colRatio = std::fabs(det);
+  for (int i = 0; i < 3; ++i) {
+    const double row = std::hypot(m[i][0], m[i][1], m[i][2]);
+    const double col = std::hypot(m[0][i], m[1][i], m[2][i]);
+    if (row == 0 || col == 0) return std::nullopt;
+    rowRatio /= row;
+    colRatio /= col;
+  }
+  if (rowRatio <= 1e-14 && colRatio <= 1e-14) return std::nullopt;
   Affine r;
   const double k = 1.0 / det;
   r.m[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) * k;

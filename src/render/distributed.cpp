@@ -18,6 +18,7 @@
 #include "parallel/cluster.h"
 #include "parallel/parallel_for.h"
 #include "render/kernel.h"
+#include "render/pov_retrace.h"
 
 namespace pvrt {
 
@@ -369,6 +370,14 @@ DistributedResult renderDistributed(const Scene& scene, const RenderSettings& s,
     local.render(mine);
   }
   const double idle = cluster::barrier();  // waiting here is load imbalance, not communication
+  // POV-Ray leaves pixels whose colour is NaN without supersampling (pov_retrace.h): traced
+  // again as --pov-blocks when any rank met such a sample, by every rank.
+  if (retraceNonFiniteAsPovBlocks(s.sampler) && !s.loadMap && !s.region &&
+      cluster::anyFailed(local.counts().nonFiniteSamples > 0)) {
+    RenderSettings blocks = s;
+    blocks.sampler.adaptive.blocks = true;
+    return renderDistributed(scene, blocks, d);
+  }
 
   const std::vector<uint32_t> share = local.payload(d.eightBit);
   const std::vector<uint32_t> all =

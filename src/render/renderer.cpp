@@ -12,6 +12,7 @@
 #include "core/interrupt.h"
 #include "render/kernel.h"
 #include "render/pixel_value.h"
+#include "render/pov_retrace.h"
 
 namespace pvrt {
 
@@ -105,7 +106,9 @@ void cropToArea(RenderResult& r, const RenderSettings& s) {
   r.load = std::move(load);
 }
 
-RenderResult render(const Scene& scene, const RenderSettings& settings) {
+namespace {
+
+RenderResult renderOnce(const Scene& scene, const RenderSettings& settings) {
   const auto t0 = Clock::now();
   RenderResult result;
   // Full size, so that every pixel is traced as in the whole image; the plan covers the
@@ -196,6 +199,23 @@ RenderResult render(const Scene& scene, const RenderSettings& settings) {
   cropToArea(result, settings);
   result.seconds = secondsSince(t0);
   return result;
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const RenderSettings& settings) {
+  RenderResult first = renderOnce(scene, settings);
+  if (first.cancelled || first.totals.nonFiniteSamples == 0 || !retraceNonFiniteAsPovBlocks(settings.sampler) ||
+      settings.loadMap || settings.region)
+    return first;
+  // POV-Ray leaves pixels whose colour is NaN without supersampling (pov_retrace.h). The block
+  // kernel takes neither a load map (it shares a pixel's rays with its neighbours) nor a
+  // region (POV-Ray's blocks are the whole image's): with one, the image stays plain.
+  RenderSettings blocks = settings;
+  blocks.sampler.adaptive.blocks = true;
+  RenderResult again = renderOnce(scene, blocks);
+  again.seconds += first.seconds;
+  return again;
 }
 
 }  // namespace pvrt

@@ -44,6 +44,19 @@ double typicalSize(const std::vector<double>& objects) {
 
 constexpr size_t kObjectsAtATime = 1024;  // the fewest objects of a block of the build
 
+// The size a primitive's tolerances follow. A sphere or box kept in its own space (turned,
+// or scaled unequally) is tested there, where the tolerances are lengths of that space, as
+// POV-Ray's fixed ones are: its size as written, not the world's. The world's, for a sphere
+// scaled <1e9, 0.3, 1> (2e9 across), made the unit 1e5 and the unit-sphere test's epsilons
+// 1e-5 and 1 in a space where the sphere has radius 1: every ray missed it. Elsewhere the
+// object's world size.
+double localSize(const Primitive& p, double worldSize) {
+  if (!p.transform) return worldSize;
+  if (const auto* s = std::get_if<SphereShape>(&p.shape)) return 2 * s->radius;
+  if (const auto* b = std::get_if<BoxShape>(&p.shape)) return sizeOf(Bounds{b->lo, b->hi});
+  return worldSize;
+}
+
 // Uniform scale factor s when the linear part is s times a rotation, else 0.
 double similarityScale(const Affine& a) {
   const double s2 = a.m[0][0] * a.m[0][0] + a.m[1][0] * a.m[1][0] + a.m[2][0] * a.m[2][0];
@@ -288,7 +301,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
       // unit, set below), so that a sky sphere neither coarsens the others nor is lost to theirs.
       if (!box.empty()) objectSizes[i] = sizeOf(box);
       for (Primitive& p : made) {
-        if (!box.empty()) p.unit = float(unitFor(objectSizes[i]));
+        if (!box.empty()) p.unit = float(unitFor(localSize(p, objectSizes[i])));
         store.records[k++] = PrimitiveStore::compact(std::move(p), others[b]);
       }
     }

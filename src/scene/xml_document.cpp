@@ -219,9 +219,35 @@ size_t firstBadCharacterReference(std::string_view s) {
   return std::string_view::npos;
 }
 
+// Markup tinyxml2 lets through that XML does not allow: white space after '<' ("< sphere/>",
+// which tinyxml2 reads as <sphere/>), and "--" inside a comment or a comment ending "--->".
+// The offset of the first, with what is wrong; npos when there is none.
+static std::pair<size_t, const char*> firstLaxMarkup(std::string_view s) {
+  constexpr size_t npos = std::string_view::npos;
+  for (size_t i = s.find('<'); i < s.size(); i = s.find('<', i + 1)) {
+    if (s.compare(i, 4, "<!--") == 0) {
+      const size_t close = s.find("-->", i + 4);
+      if (close == npos) break;  // unclosed: the parser's error
+      const std::string_view body = s.substr(i + 4, close - (i + 4));
+      if (const size_t d = body.find("--"); d != npos)
+        return {i + 4 + d, "\"--\" inside a comment (XML does not allow it; write \"- -\")"};
+      if (!body.empty() && body.back() == '-') return {close - 1, "a comment ends in \"--->\" (XML does not allow it)"};
+      i = close + 2;
+    } else if (s.compare(i, 9, "<![CDATA[") == 0) {
+      i = std::min(s.find("]]>", i), s.size());
+    } else if (s.compare(i, 2, "<?") == 0) {
+      i = std::min(s.find("?>", i), s.size());
+    } else if (i + 1 < s.size() && (s[i + 1] == ' ' || s[i + 1] == '\t' || s[i + 1] == '\n' || s[i + 1] == '\r')) {
+      return {i, "white space after '<' (an element's name follows '<' directly)"};
+    }
+  }
+  return {npos, nullptr};
+}
+
 bool isSceneText(std::string_view bytes) {
   return firstNonTextByte(bytes) == std::string_view::npos &&
-         firstBadCharacterReference(bytes) == std::string_view::npos;
+         firstBadCharacterReference(bytes) == std::string_view::npos &&
+         firstLaxMarkup(bytes).first == std::string_view::npos;
 }
 
 void checkSceneText(std::string_view bytes, const std::string& name) {
@@ -236,6 +262,8 @@ void checkSceneText(std::string_view bytes, const std::string& name) {
     throw sceneError({name, lineAt(bytes, bad)}, "xml",
                      "character reference " + std::string(ref) + " is not an XML character");
   }
+  if (const auto [bad, what] = firstLaxMarkup(bytes); bad != std::string_view::npos)
+    throw sceneError({name, lineAt(bytes, bad)}, "xml", what);
 }
 
 void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {

@@ -387,6 +387,17 @@ class Loader {
         throw sceneError(at, "xml", "the <?xml ...?> declaration may appear only once, first");
       if (n->ToElement() && n != root)
         throw sceneError(at, printable(n->Value()), "a second root element (only one <scene> is allowed)");
+      // tinyxml2 refuses text after the root but keeps text before it (a second byte order
+      // mark, "junk<scene>"), which XML does not allow either.
+      if (const auto* t = n->ToText()) {
+        const std::string_view v = t->Value();
+        const size_t from = v.find_first_not_of(" \t\r\n");
+        if (from == std::string_view::npos) continue;
+        const size_t to = v.find_last_not_of(" \t\r\n");
+        throw sceneError(
+            {file_, n->GetLineNum()}, "xml",
+            "unexpected text \"" + printable(v.substr(from, to + 1 - from), 20) + "\" outside the <scene> element");
+      }
     }
     if (std::strcmp(root->Name(), "scene") != 0)
       throw sceneError(locOf(root), printable(root->Name()), "the root element must be <scene>");
@@ -473,7 +484,13 @@ class Loader {
       bytes = readSceneBytes(path);
     } catch (const Error& err) {
       if (err.code() != ExitCode::SceneError) throw;  // a signal: not the include's fault
-      throw errorAt(e, std::string("cannot include \"") + printable(file) + "\": " + err.what());
+      // Its message is "PATH: error: cannot read scene: WHY": the path again (in full, however
+      // long) and a second "error:"; only WHY is news.
+      const std::string_view what = err.what();
+      constexpr std::string_view kRead = ": error: cannot read scene: ";
+      const size_t at = what.rfind(kRead);
+      throw errorAt(e, "cannot include \"" + printable(file) +
+                           "\": " + std::string(at == std::string_view::npos ? what : what.substr(at + kRead.size())));
     }
     if ((includedBytes_ += bytes.size()) > kMaxSceneBytes)
       throw errorAt(e, "the included files hold more than 1 GiB in all");
@@ -524,7 +541,10 @@ class Loader {
         const size_t from = s.find_first_not_of(" \t\r\n");
         if (from == std::string_view::npos) continue;
         const size_t to = s.find_last_not_of(" \t\r\n");
-        throw errorAt(e, "unexpected text \"" + printable(s.substr(from, to + 1 - from), 20) + "\"");
+        // The line of the text itself, not of its element (which may be <scene>, on line 1):
+        // tinyxml2 numbers a text node by its first character that is not white space.
+        throw sceneError({file_, n->GetLineNum() + lineOffset_}, printable(e->Name()),
+                         "unexpected text \"" + printable(s.substr(from, to + 1 - from), 20) + "\"");
       }
   }
   void noChildren(const XMLElement* e) const {

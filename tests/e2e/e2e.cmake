@@ -95,14 +95,14 @@ add_test(NAME e2e.error.unreadable_scene
 set_tests_properties(e2e.error.unreadable_scene PROPERTIES LABELS "e2e;bad-input" SKIP_RETURN_CODE 77 TIMEOUT 60)
 
 # Bad command lines: exit code 2.
-pvrt_expect_error(bad_extension 2 "unsupported image format" ABSENT out.bmp ARGS render ${PVRT_PAPER1} -o <DIR>/out.bmp)
-pvrt_expect_error(spp_not_square 2 "perfect square" ARGS render ${PVRT_PAPER1} --spp 5)
+pvrt_expect_error(bad_extension 2 "^pvrt: error: cannot write .*: unsupported image format" ABSENT out.bmp ARGS render ${PVRT_PAPER1} -o <DIR>/out.bmp)
+pvrt_expect_error(spp_not_square 2 "^pvrt: error: --spp must be a perfect square" ARGS render ${PVRT_PAPER1} --spp 5)
 pvrt_expect_error(spp_zero 2 "spp" ARGS render ${PVRT_PAPER1} --spp 0)
 pvrt_expect_error(width_zero 2 "width" ARGS render ${PVRT_PAPER1} -W 0)
 pvrt_expect_error(width_negative 2 "width" ARGS render ${PVRT_PAPER1} -W -5)
 pvrt_expect_error(width_2_pow_31 2 "width" ARGS render ${PVRT_PAPER1} -W 2147483648)
 pvrt_expect_error(too_many_pixels 2 "image of 65536 x 65536 pixels is more than" ARGS render ${PVRT_PAPER1} -W 65536 -H 65536)
-pvrt_expect_error(unknown_schedule 2 "unknown schedule" ARGS render ${PVRT_PAPER1} --schedule fastest)
+pvrt_expect_error(unknown_schedule 2 "^pvrt: error: unknown schedule" ARGS render ${PVRT_PAPER1} --schedule fastest)
 # The output cannot be written: exit code 4.
 pvrt_expect_error(output_dir_missing 4 "no such directory" ABSENT nope ARGS render ${PVRT_PAPER1} -o <DIR>/nope/out.png)
 

@@ -2,6 +2,9 @@
 // real scene's image must be, whatever the decisions were.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+
 #include "test_scenes.h"
 
 namespace pvrt {
@@ -69,6 +72,47 @@ TEST(AdaptiveRender, PovBlocksTracesEveryPixelFullyInBlocks) {
   RenderSettings one = test::settings(80, 50, Backend::Serial, 1);
   one.sampler = blocks;
   EXPECT_EQ(test::renderXml(kScene, one).image.data(), r.image.data());
+}
+
+// A negative light on the floor, reflected with exponent 2 by the sphere: blue below 0
+// raised to 1/2, so NaN in POV-Ray as in pvrt (blind8's scene 09f).
+const char* kNaNScene = R"(<scene>
+  <camera location="0 2 -6" look_at="0 1 0" angle="55" right="1.6 0 0"/>
+  <light_source location="-3 6 -4" color="1 0.95 0.9"/>
+  <light_source location="3 3 -4" color="-0.2 -0.1 -0.3"/>
+  <sphere center="1.6 1 0" radius="0.9"><pigment color="0.2 0.4 0.9"/>
+    <finish ambient="0" diffuse="0.4"><reflection min="0.8" exponent="2"/></finish></sphere>
+  <plane normal="0 1 0"><pigment color="0.9"/></plane>
+</scene>)";
+
+bool sameBits(const Image& a, const Image& b) {
+  return a.data().size() == b.data().size() &&
+         std::memcmp(a.data().data(), b.data().data(), a.data().size() * sizeof(float)) == 0;
+}
+
+// POV-Ray's +A0.0 supersamples a pixel when its colour differs from its left or top
+// neighbour's by at least 0, and a NaN colour fails that comparison: such a pixel keeps its
+// centre ray. The plain pov sampler, which supersamples every pixel, traced it with all ten
+// (09f: 52 channels over POV-Ray's by up to 47 levels); a render that meets a NaN sample is
+// now traced again as --pov-blocks, which makes POV-Ray's decisions (09f: 0 channels differ).
+TEST(AdaptiveRender, APixelWhoseColourIsNaNKeepsItsCentreRay) {
+  RenderSettings s = test::settings(160, 100, Backend::OpenMP, 2);
+  s.sampler = {SamplerKind::Pov, 9, 0};
+  const RenderResult plain = test::renderXml(kNaNScene, s);
+  ASSERT_GT(plain.totals.nonFiniteSamples, 0u);
+  s.sampler.adaptive.blocks = true;
+  const RenderResult blocks = test::renderXml(kNaNScene, s);
+  EXPECT_TRUE(sameBits(plain.image, blocks.image));
+  // Fewer camera rays than every pixel supersampled: the centre, the 9 more of each pixel
+  // supersampled, and the frames of its 32-pixel blocks (a row above and a column left each:
+  // 4 block rows of 160, 5 block columns of 100).
+  const uint64_t everyPixel = 160 * 100 * 10 + 4 * 160 + 5 * 100;
+  EXPECT_LT(plain.totals.primaryRays, everyPixel);
+  EXPECT_EQ((everyPixel - plain.totals.primaryRays) % 9, 0u);
+  // Every sample finite: the plain sampler stays as it was, a single render.
+  RenderSettings f = test::settings(80, 50, Backend::OpenMP, 2);
+  f.sampler = {SamplerKind::Pov, 9, 0};
+  EXPECT_EQ(test::renderXml(kScene, f).totals.primaryRays, 80u * 50u * 10u);
 }
 
 // Method 2 at +A0.0 subdivides every pixel fully: POV-Ray's +R3 is a 5 x 5 lattice from

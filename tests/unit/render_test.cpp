@@ -49,6 +49,20 @@ TEST(Render, MissedRaysSeeTheBackground) {
 
 // A plane y=0 lit from straight above by a light at height h: the pixel looking straight
 // down sees diffuse * 1 * colour (N.L = 1); the checker picks colour by cell.
+// A sphere stretched 1e9 along x (legal since blind8's loader fix) fills the picture: its
+// tolerances are those of its own space, where it has radius 1, not of its 2e9 world size
+// (which made every ray miss it). The same with 1e8, which loaded before.
+TEST(Render, SphereStretchedAlongOneAxisIsSeen) {
+  for (const char* k : {"1e8", "1e9", "1e12"}) {
+    const RenderResult r = renderXml(std::string(R"(<scene><camera location="0 0 -1.5"/>
+      <sphere center="0 0 0" radius="1"><pigment color="1 1 1"/><finish ambient="1" diffuse="0"/>
+      <scale v=")") + k + R"( 1 1"/></sphere></scene>)",
+                                     settings(4, 3));
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 4; ++x) EXPECT_FLOAT_EQ(r.image.row(y)[3 * x], 1.0f) << k << " at " << x << ", " << y;
+  }
+}
+
 TEST(Render, PlaneUnderOverheadLightMatchesLambert) {
   const RenderResult r = renderXml(R"(<scene>
       <camera location="0.5 5 0.5" look_at="0.5 0 0.5" sky="0 0 1"/>

@@ -129,13 +129,32 @@ TEST(Transform, SingularMatrixHasNoInverse) {
   EXPECT_FALSE(dependent.inverse());
   EXPECT_FALSE(Transform::from(dependent));
   EXPECT_FALSE(Affine::povMatrix({0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 3}).inverse());
-  // Nearly singular relative to its size: determinant 1e-16 against entries of 1.
-  EXPECT_FALSE(Affine::scale({1, 1, 1e-16}).inverse());
+  // Nearly singular: rows (and columns) that depend on each other to 1e-15.
+  EXPECT_FALSE(Affine::povMatrix({1, 1, 0, 1, 1 + 1e-15, 0, 0, 0, 1, 0, 0, 0}).inverse());
   // The test is relative: a uniformly tiny (or huge) scale is perfectly invertible.
   const auto tiny = Affine::scale(Vec3{1e-6}).inverse();
   ASSERT_TRUE(tiny);
   expectVecNear(tiny->applyPoint({1e-6, 2e-6, 3e-6}), {1, 2, 3}, 1e-9);
   EXPECT_TRUE(Affine::scale(Vec3{1e6}).inverse());
+}
+
+// Scaling one axis far more than the others flattens nothing: the test is relative to the
+// rows' and the columns' lengths, not to the largest entry (which called <1e9, 1, 1> and
+// <1, 1e-7, 1e-7> singular, so that such a legal scale was refused).
+TEST(Transform, AnisotropicScalesAreInvertible) {
+  for (const Vec3& s : {Vec3{1e9, 1, 1}, Vec3{1, 1e-7, 1e-7}, Vec3{1e15, 1e-15, 1}, Vec3{1, 1, 1e-16}}) {
+    const auto inv = Affine::scale(s).inverse();
+    ASSERT_TRUE(inv) << s.x << " " << s.y << " " << s.z;
+    expectVecNear(inv->applyPoint(Affine::scale(s).applyPoint({1, 2, 3})), {1, 2, 3}, 1e-12);
+  }
+  // Turned before or after the scale: its columns, or its rows, stay orthogonal.
+  const Affine turn = Affine::rotate({10, 35, 70});
+  for (const Affine& a : {turn.then(Affine::scale({1e12, 1, 1})), Affine::scale({1e12, 1, 1}).then(turn)}) {
+    const auto inv = a.inverse();
+    ASSERT_TRUE(inv);
+    // Condition number 1e12: the round trip keeps about 4 of the 16 digits.
+    expectVecNear(inv->applyPoint(a.applyPoint({1, 2, 3})), {1, 2, 3}, 1e-3);
+  }
 }
 
 // The shear y' = x + y (matrix <1,1,0, 0,1,0, 0,0,1, 0,0,0>) takes the plane y=0 to the

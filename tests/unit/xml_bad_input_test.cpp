@@ -69,6 +69,26 @@ TEST(XmlBadInput, CharacterReferencesToNonCharactersAreRefused) {
             10);
 }
 
+// tinyxml2 read "< sphere/>" as <sphere/> and let "--" through inside a comment; XML allows
+// neither (a name follows '<' directly; Comment excludes "--" and a final '-').
+TEST(XmlBadInput, WhiteSpaceAfterLessThanAndDoubleHyphensInCommentsAreRefused) {
+  EXPECT_EQ(errorOf("<scene>\n< sphere center=\"0 0 0\" radius=\"1\"/>\n</scene>"),
+            "t.xml:2: error: xml: white space after '<' (an element's name follows '<' directly)");
+  EXPECT_EQ(errorOf("<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n<\tpigment/></sphere></scene>"),
+            "t.xml:3: error: xml: white space after '<' (an element's name follows '<' directly)");
+  EXPECT_EQ(errorOf("<scene>\n\n<!-- render with --spp 9 -->\n</scene>"),
+            "t.xml:3: error: xml: \"--\" inside a comment (XML does not allow it; write \"- -\")");
+  EXPECT_EQ(errorOf("<scene><!-- x ---></scene>"),
+            "t.xml:1: error: xml: a comment ends in \"--->\" (XML does not allow it)");
+  // What is allowed: '<' with white space inside comments, CDATA and declarations; an empty
+  // comment; single hyphens.
+  EXPECT_NO_THROW(
+      loadSceneString("<?xml version=\"1.0\" ?><!-- a < b, -x- --><!----><scene>"
+                      "<!-- radius < falloff - 1 -->\n</scene >",
+                      "t.xml"));
+  EXPECT_EQ(errorOf("<scene><![CDATA[ < x ]]></scene>"), "t.xml:1: error: scene: unexpected text \"< x\"");
+}
+
 TEST(XmlBadInput, OnlyOneRootAndNoDeclarationsInside) {
   EXPECT_EQ(errorOf("<scene/>\n<scene><sphre/></scene>"),
             "t.xml:2: error: scene: a second root element (only one <scene> is allowed)");

@@ -937,14 +937,34 @@ TEST(XmlLoader, ErrorZeroScaleAndSingularTransforms) {
                      "t.xml:2: error: scale: a scale factor of zero flattens the object");
   EXPECT_SCENE_ERROR(inScene("<plane>\n<matrix v=\"1 0 0  2 0 0  0 0 1  0 0 0\"/></plane>"),
                      "t.xml:3: error: matrix: the matrix is singular");
-  // Each step is fine; together they squash z to nothing.
+  // Each step is fine; together they squash z to 1e-16, below the range.
+  const std::string range =
+      "its transforms together scale by more than 1e15 or less than 1e-15, or move by more than 1e15";
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">\n<scale v=\"1 1 1e-8\"/>\n"
                              "<scale v=\"1 1 1e-8\"/></sphere>"),
-                     "t.xml:2: error: sphere: its transforms together are singular");
+                     "t.xml:2: error: sphere: " + range);
   EXPECT_SCENE_ERROR(inScene("<camera><scale v=\"1 1 1e-8\"/><scale v=\"1 1 1e-8\"/></camera>"),
-                     "t.xml:2: error: camera: its transforms together are singular");
+                     "t.xml:2: error: camera: " + range);
   EXPECT_SCENE_ERROR(inScene("<plane><pigment><scale v=\"1e-8 1 1\"/><scale v=\"1e-8 1 1\"/></pigment></plane>"),
-                     "t.xml:2: error: pigment: its transforms together are singular");
+                     "t.xml:2: error: pigment: " + range);
+  EXPECT_SCENE_ERROR(inScene("<plane><rotate v=\"0 0 45\"/><matrix v=\"1 1 0  1 1 0  0 0 1  0 0 0\"/></plane>"),
+                     "t.xml:2: error: matrix: the matrix is singular");
+}
+
+// A scale far larger along one axis than the others is legal, as in POV-Ray (which refuses
+// only a matrix whose determinant is 0): within the range of 1e-15 to 1e15 it loads, turned
+// or not, as a step of its own or as a matrix. These were refused as singular.
+TEST(XmlLoader, AnisotropicScalesLoad) {
+  for (const char* t :
+       {"<scale v=\"1e9 1 1\"/>", "<scale v=\"1 1e-7 1e-7\"/>", "<scale v=\"1e5 1e-5 1\"/>",
+        "<matrix v=\"1e8 0 0  0 1e-8 0  0 0 1  0 0 0\"/>",
+        "<rotate v=\"0 0 30\"/><scale v=\"1e12 1 1\"/><rotate v=\"20 0 0\"/>", "<scale v=\"1e15 1e-15 1\"/>"}) {
+    SCOPED_TRACE(t);
+    EXPECT_NO_THROW(
+        loadSceneString(inScene(std::string("<sphere center=\"0 0 0\" radius=\"1\">") + t + "</sphere><camera>" + t +
+                                "</camera><plane><pigment>" + t + "</pigment></plane>"),
+                        "t.xml"));
+  }
 }
 
 TEST(XmlLoader, ErrorElementsThatMayAppearOnlyOnce) {
@@ -1034,7 +1054,15 @@ TEST(XmlLoader, ErrorWrongRoot) {
 }
 
 TEST(XmlLoader, ErrorTextContent) {
-  EXPECT_SCENE_ERROR("<scene>\nhello\n</scene>", "t.xml:1: error: scene: unexpected text \"hello\"");
+  // The line is the text's own, not its element's: <scene> starts on line 1 of a file whose
+  // stray text may be on line 900 (it was reported on line 1).
+  EXPECT_SCENE_ERROR("<scene>\nhello\n</scene>", "t.xml:2: error: scene: unexpected text \"hello\"");
+  EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\"/>\n\n  \n  x\n<plane/>"),
+                     "t.xml:5: error: scene: unexpected text \"x\"");
+  EXPECT_SCENE_ERROR("<scene>\r\n<plane/>\r\n\r\n\xc2\xa0\r\n</scene>\r\n",
+                     "t.xml:4: error: scene: unexpected text \"\xc2\xa0\"");
+  EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">\n\n1</sphere>"),
+                     "t.xml:4: error: sphere: unexpected text \"1\"");
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">1</sphere>"),
                      "t.xml:2: error: sphere: unexpected text \"1\"");
   EXPECT_SCENE_ERROR(inScene("<camera>\n<translate v=\"0 0 0\">x</translate></camera>"),
@@ -1045,6 +1073,14 @@ TEST(XmlLoader, ErrorTextContent) {
                      "t.xml:2: error: light_source: unexpected text \"on\"");
   EXPECT_SCENE_ERROR(inScene("<background color=\"1\"><![CDATA[x]]></background>"),
                      "t.xml:2: error: background: unexpected text \"x\"");
+  // Before the root too (tinyxml2 keeps it there, and the file loaded): a second byte order
+  // mark, or a stray word.
+  EXPECT_SCENE_ERROR("junk<scene/>", "t.xml:1: error: xml: unexpected text \"junk\" outside the <scene> element");
+  EXPECT_SCENE_ERROR("<!-- a scene -->\n\n  x\n<scene>\n</scene>",
+                     "t.xml:3: error: xml: unexpected text \"x\" outside the <scene> element");
+  EXPECT_SCENE_ERROR("\xef\xbb\xbf\xef\xbb\xbf<scene/>",
+                     "t.xml:1: error: xml: unexpected text \"\xef\xbb\xbf\" outside the <scene> element");
+  EXPECT_NO_THROW(loadSceneString("\xef\xbb\xbf \n<!-- x -->\n<scene/>\n", "t.xml"));
   // Long text is cut to its first 20 characters, and "..." says so.
   EXPECT_SCENE_ERROR(inScene("<mesh><triangle p1=\"0 0 0\" p2=\"1 0 0\" p3=\"0 1 0\">abcdefghijklmnopqrstuvwxyz"
                              "</triangle></mesh>"),
