@@ -24,10 +24,16 @@ double absDot(const Vec3& a, const Vec3& b) {
   return std::fabs(a.x) * std::fabs(b.x) + std::fabs(a.y) * std::fabs(b.y) + std::fabs(a.z) * std::fabs(b.z);
 }
 
-// Whether a box (its centre and half-extents from the eye) is clearly in front, from the
-// least t of its points (t of row 0 is linear, so its least is at a corner).
-bool inFront(double least, const Vec3& row0, const Vec3& centre, const Vec3& half) {
-  return least > kInFront * length(row0) * (length(centre) + length(half));
+// Where a box (its centre and half-extents from the eye) lies from the camera's plane, by
+// the least and the most t of its points (t is linear, so they are at corners). A camera
+// ray's points all have t > 0 (row 0 times direction + u right + v up is 1), so a box
+// wholly behind can never be met.
+enum class Side { Front, Behind, Across };
+Side sideOf(const Vec3& row0, const Vec3& centre, const Vec3& half, double& tLo, double& tHi) {
+  const double tc = dot(row0, centre), te = absDot(row0, half);
+  tLo = tc - te, tHi = tc + te;
+  const double clearly = kInFront * length(row0) * (length(centre) + length(half));
+  return tLo > clearly ? Side::Front : tHi < -clearly ? Side::Behind : Side::Across;
 }
 
 }  // namespace
@@ -49,8 +55,8 @@ Vista::Vista(const Camera& camera, const Bvh& bvh) {
     if (!(std::fabs(s) > 1e-9 * (std::fabs(p->distance) + std::fabs(n)))) return;  // the camera is on it
     planes_.push_back({dot(p->normal, d), dot(p->normal, r), dot(p->normal, u), s > 0 ? 1.0 : -1.0});
   }
-  // Every leaf's box in front of the camera: a node found wholly in front needs no look
-  // inside; one that is not is looked into, down to the leaves.
+  // No leaf's box across the camera's plane: a node wholly in front or behind needs no
+  // look inside; one across it is looked into, down to the leaves.
   const std::vector<BvhNode>& nodes = bvh.nodes();
   if (nodes.empty()) {
     usable_ = bvh.boundedCount() == 0;
@@ -64,20 +70,13 @@ Vista::Vista(const Camera& camera, const Bvh& bvh) {
       const Bounds b = n.childBounds(c);
       if (b.empty()) continue;
       const Vec3 centre = (b.lo + b.hi) * 0.5 - eye_, half = (b.hi - b.lo) * 0.5;
-      if (inFront(dot(inverse_[0], centre) - absDot(inverse_[0], half), inverse_[0], centre, half)) continue;
-      if (n.count[c] > 0) return;  // a leaf reaching behind the camera
+      double tLo, tHi;
+      if (sideOf(inverse_[0], centre, half, tLo, tHi) != Side::Across) continue;
+      if (n.count[c] > 0) return;  // a leaf across the camera's plane
       stack.push_back(n.child[c]);
     }
   }
   usable_ = true;
-}
-
-void Vista::project(const Vec3& p, int width, int height, double& x, double& y) const {
-  const Vec3 q = p - eye_;
-  const double t = dot(inverse_[0], q);
-  const double u = dot(inverse_[1], q) / t, v = dot(inverse_[2], q) / t;
-  x = (u + 0.5) * width - 0.5;
-  y = 0.5 * height - 0.5 - v * height;
 }
 
 VistaMask::VistaMask(const Vista& vista, const Bvh& bvh, const WorkItem& rect, int width, int height,
@@ -138,11 +137,12 @@ VistaMask::VistaMask(const Vista& vista, const Bvh& bvh, const WorkItem& rect, i
       const Bounds b = n.childBounds(c);
       if (b.empty()) continue;
       const Vec3 centre = (b.lo + b.hi) * 0.5 - vista.eye(), half = (b.hi - b.lo) * 0.5;
-      const double tc = dot(r0, centre), te = absDot(r0, half);
-      const double tLo = tc - te, tHi = tc + te;
-      if (!e.inFront && !inFront(tLo, r0, centre, half)) {
-        // Reaching behind the camera's plane: an interior node is looked into; a leaf cannot
-        // be one (Vista found none), but would make every pixel of the item one that may hit.
+      double tLo, tHi;
+      const Side side = sideOf(r0, centre, half, tLo, tHi);
+      if (!e.inFront && side == Side::Behind) continue;
+      if (!e.inFront && side == Side::Across) {
+        // Across the camera's plane: an interior node is looked into; a leaf cannot be one
+        // (Vista found none), but would make every pixel of the item one that may hit.
         if (n.count[c] == 0) {
           stack.push_back({n.child[c], false});
         } else {

@@ -33,15 +33,12 @@ inline constexpr double kVistaMargin = 2.0;
 class Vista {
  public:
   Vista() = default;
-  // Usable when every bounded primitive's box lies wholly in front of the camera, every
-  // unbounded primitive is a plane the camera is not on, and the camera's three vectors
-  // span space: then a box's projection is the hull of its corners'.
+  // Usable when no bounded primitive's box lies across the camera's plane (each is wholly in
+  // front, where its projection is bounded, or wholly behind, where no camera ray goes),
+  // every unbounded primitive is a plane the camera is not on, and the camera's three
+  // vectors span space.
   Vista(const Camera& camera, const Bvh& bvh);
   bool usable() const { return usable_; }
-
-  // Screen position (x + dx, y + dy in Camera::ray's terms) of point p of a box in front
-  // of the camera.
-  void project(const Vec3& p, int width, int height, double& x, double& y) const;
 
   const Vec3& eye() const { return eye_; }
   // Rows of the inverse of [direction right up]: p - eye = t (direction + u right + v up)

@@ -99,13 +99,20 @@ TEST(Vista, APixelIsClearOrNotWhateverItsWorkItem) {
   }
 }
 
-TEST(Vista, NotUsedWhereABoxReachesBehindTheCameraOrTheCameraIsOnAPlane) {
+TEST(Vista, NotUsedWhereABoxLiesAcrossTheCameraPlaneOrTheCameraIsOnAPlane) {
   const std::string light = "<light_source location=\"0 5 -5\" color=\"1 1 1\"/>";
-  const Scene around = buildScene(
-      loadSceneString("<scene><camera location=\"0 1 0\" look_at=\"0 1 1\"/>" + light +
-                          "<sphere center=\"0 1 5\" radius=\"1\"/><sphere center=\"0 1 -5\" radius=\"1\"/></scene>",
-                      "around.xml"));
-  EXPECT_FALSE(around.vista.usable());
+  const Scene across = buildScene(loadSceneString(
+      "<scene><camera location=\"0 1 0\" look_at=\"0 1 1\"/>" + light +
+          "<sphere center=\"0 1 5\" radius=\"1\"/><sphere center=\"3 1 0\" radius=\"1\"/></scene>",
+      "across.xml"));
+  EXPECT_FALSE(across.vista.usable());
+  // A sphere wholly behind the camera: no camera ray can meet it, so it leaves the vista on.
+  const Scene behind = buildScene(loadSceneString(
+      "<scene><camera location=\"0 1 0\" look_at=\"0 1 1\"/>" + light +
+          "<sphere center=\"0 1 5\" radius=\"1\"/><sphere center=\"0 1 -5\" radius=\"1\"/></scene>",
+      "behind.xml"));
+  ASSERT_TRUE(behind.vista.usable());
+  EXPECT_GT(checkClearPixelsMeetNothing(behind, 40, 30, povOffsets(9), {0, 0, 40, 30}), 600);
   const Scene onPlane = buildScene(
       loadSceneString("<scene><camera location=\"0 0 -5\" look_at=\"0 0 0\"/>" + light +
                           "<plane normal=\"0 1 0\" distance=\"0\"/><sphere center=\"0 1 5\" radius=\"1\"/></scene>",
