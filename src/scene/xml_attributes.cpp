@@ -100,6 +100,22 @@ size_t wordsIn(const char* text, std::string_view* out, size_t max) {
   return n;
 }
 
+// The code point of one valid UTF-8 sequence of two to four bytes.
+unsigned codePoint(std::string_view seq) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(seq[k]); };
+  unsigned cp = byte(0) & (0xffu >> (seq.size() + 1));
+  for (size_t k = 1; k < seq.size(); ++k) cp = (cp << 6) | (byte(k) & 0x3fu);
+  return cp;
+}
+
+// Unicode's spaces other than ' ', and the characters of no width: printed, they pass for
+// a space or for nothing.
+bool invisible(std::string_view seq) {
+  const unsigned cp = codePoint(seq);
+  return cp == 0xa0 || cp == 0x1680 || (cp >= 0x2000 && cp <= 0x200f) || cp == 0x2028 || cp == 0x2029 || cp == 0x202f ||
+         cp == 0x205f || cp == 0x2060 || cp == 0x3000 || cp == 0xfeff;
+}
+
 constexpr size_t kNotPlain = size_t(-1);
 
 // How many numbers `text` holds, when it is at most `max` numbers that parseNumber() takes as
@@ -135,8 +151,14 @@ std::string printable(std::string_view text, size_t max) {
     if (c == '\n') out += "\\n";
     else if (c == '\t') out += "\\t";
     else if (c == '\r') out += "\\r";
-    else if (c >= 0x20 && c != 0x7f && len > 0) out.append(text.substr(i, len));
-    else {  // a control character, or a byte that is not UTF-8
+    else if (len > 1 && invisible(text.substr(i, len))) {
+      // A space that is not ' ' (a no-break space, say) would read as one in the message.
+      char code[16];
+      std::snprintf(code, sizeof code, "\\u%04x", codePoint(text.substr(i, len)));
+      out += code;
+    } else if (c >= 0x20 && c != 0x7f && len > 0) {
+      out.append(text.substr(i, len));
+    } else {  // a control character, or a byte that is not UTF-8
       char hex[8];
       std::snprintf(hex, sizeof hex, "\\x%02x", c);
       out += hex;

@@ -289,6 +289,8 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
         hint = ": an element not closed, or closed with another name";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
         hint = ": not XML, or the file ends before its elements are closed";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_DECLARATION)
+        hint = ": a <?...?> inside an element (scenes take none), or one not closed by '?>'";
       what = std::string("malformed XML (") + doc.ErrorName() + hint + ")";
     }
   }

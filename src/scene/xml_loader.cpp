@@ -383,8 +383,16 @@ class Loader {
     for (const tinyxml2::XMLNode* n = doc.FirstChild(); n; n = n->NextSibling()) {
       const SourceLoc at{file_, n->GetLineNum()};
       if (n->ToUnknown()) throw sceneError(at, "xml", "<!DOCTYPE> and other <!...> are not supported");
-      if (n->ToDeclaration() && n != doc.FirstChild())
-        throw sceneError(at, "xml", "the <?xml ...?> declaration may appear only once, first");
+      if (const auto* d = n->ToDeclaration()) {
+        // tinyxml2 reads any <?name ...?> as a declaration: a processing instruction too.
+        const std::string_view v = d->Value();
+        if (v.substr(0, 3) != "xml" || (v.size() > 3 && v[3] != ' ' && v[3] != '\t' && v[3] != '\r' && v[3] != '\n'))
+          throw sceneError(
+              at, "xml",
+              "processing instructions (<?" + printable(v.substr(0, v.find(' ')), 40) + " ...?>) are not supported");
+        if (n != doc.FirstChild())
+          throw sceneError(at, "xml", "the <?xml ...?> declaration may appear only once, first");
+      }
       if (n->ToElement() && n != root)
         throw sceneError(at, printable(n->Value()), "a second root element (only one <scene> is allowed)");
       // tinyxml2 refuses text after the root but keeps text before it (a second byte order

@@ -101,6 +101,31 @@ TEST(XmlBadInput, OnlyOneRootAndNoDeclarationsInside) {
   EXPECT_NO_THROW(loadSceneString("<!-- before --><scene/><!-- after -->"));
 }
 
+// tinyxml2 reads any <?name ...?> as a declaration; only <?xml ...?>, first, is one.
+TEST(XmlBadInput, ProcessingInstructionsAreRefusedByName) {
+  EXPECT_EQ(errorOf("<?xml version=\"1.0\"?>\n<?xml-stylesheet href=\"a.css\"?>\n<scene/>"),
+            "t.xml:2: error: xml: processing instructions (<?xml-stylesheet ...?>) are not supported");
+  EXPECT_EQ(errorOf("<?pvrt hint?>\n<scene/>"),
+            "t.xml:1: error: xml: processing instructions (<?pvrt ...?>) are not supported");
+  EXPECT_EQ(errorOf("<scene>\n<?pvrt hint?>\n</scene>"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_DECLARATION: a <?...?> inside an element (scenes "
+            "take none), or one not closed by '?>')");
+  EXPECT_NO_THROW(loadSceneString("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<scene/>"));
+}
+
+// A no-break space (or another space that is not ' ') separates nothing; quoted as it is, the
+// message would show a good vector.
+TEST(XmlBadInput, SpacesThatAreNotSpacesAreShownInMessages) {
+  EXPECT_EQ(errorOf(inScene("<background color=\"0\xc2\xa0"
+                            "1 0\"/>")),
+            "t.xml:2: error: background: attribute 'color' must be a vector of 3 numbers, got \"0\\u00a01 0\"");
+  EXPECT_EQ(printable("a\xe2\x80\x8b"
+                      "b\xe3\x80\x80"
+                      "c\xef\xbb\xbf"),
+            "a\\u200bb\\u3000c\\ufeff");
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // other text as it is
+}
+
 TEST(XmlBadInput, Utf8TextIsAllowedAndQuotedIntact) {
   EXPECT_EQ(firstNonTextByte("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8e\xa8\t\r\n"), std::string_view::npos);
   EXPECT_EQ(errorOf(inScene("<sph\xc3\xa8re/>")),
