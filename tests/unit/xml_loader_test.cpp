@@ -1060,7 +1060,7 @@ TEST(XmlLoader, ErrorTextContent) {
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\"/>\n\n  \n  x\n<plane/>"),
                      "t.xml:5: error: scene: unexpected text \"x\"");
   EXPECT_SCENE_ERROR("<scene>\r\n<plane/>\r\n\r\n\xc2\xa0\r\n</scene>\r\n",
-                     "t.xml:4: error: scene: unexpected text \"\xc2\xa0\"");
+                     "t.xml:4: error: scene: unexpected text \"\\u00a0\"");  // shown, not invisible
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">\n\n1</sphere>"),
                      "t.xml:4: error: sphere: unexpected text \"1\"");
   EXPECT_SCENE_ERROR(inScene("<sphere center=\"0 0 0\" radius=\"1\">1</sphere>"),
@@ -1079,7 +1079,7 @@ TEST(XmlLoader, ErrorTextContent) {
   EXPECT_SCENE_ERROR("<!-- a scene -->\n\n  x\n<scene>\n</scene>",
                      "t.xml:3: error: xml: unexpected text \"x\" outside the <scene> element");
   EXPECT_SCENE_ERROR("\xef\xbb\xbf\xef\xbb\xbf<scene/>",
-                     "t.xml:1: error: xml: unexpected text \"\xef\xbb\xbf\" outside the <scene> element");
+                     "t.xml:1: error: xml: unexpected text \"\\ufeff\" outside the <scene> element");
   EXPECT_NO_THROW(loadSceneString("\xef\xbb\xbf \n<!-- x -->\n<scene/>\n", "t.xml"));
   // Long text is cut to its first 20 characters, and "..." says so.
   EXPECT_SCENE_ERROR(inScene("<mesh><triangle p1=\"0 0 0\" p2=\"1 0 0\" p3=\"0 1 0\">abcdefghijklmnopqrstuvwxyz"
