@@ -25,8 +25,9 @@ class Bvh;
 class Camera;
 
 // How far, in pixels, a pixel's samples must stay from a box's projection to be clear:
-// far above the rounding of the rays (Camera::rayAt) and of the tree's float box tests,
-// which are about 1e-7 of a pixel's angle at any size pvrt renders.
+// far above the rounding of the rays (Camera::rayAt) and of the projection itself (about
+// 1e-16 relative). A hit lies inside its primitive's box, so only the exact ray matters,
+// not the tree's float box test (which may enter a box a ray misses by 2^-18 of its length).
 inline constexpr double kVistaMargin = 2.0;
 
 // What the scene allows, found once when the scene is built.
