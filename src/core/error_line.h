@@ -7,15 +7,18 @@
 
 namespace pvrt {
 
-// The line printed for `e`: a bad command line, and an output or image that cannot be
-// written or read, read as the command-line parser's own errors do, `pvrt: error: ...`,
-// whichever part of pvrt found them (--spp 8 is refused by the sampler, -o x.bmp by the image
-// writer, a missing folder by the output plan); scene errors name their file and line.
+// The line printed for `e`: every error line carries `error:` where editors and CI log
+// scanners look for it. A scene error names its file (and line) first, `scene.xml:4: error:
+// ...` (export-pov --strict: its warning's line); anything else that does not already start
+// with "pvrt" reads as the command-line parser's own errors do, `pvrt: error: ...`, whichever
+// part of pvrt found it (--spp 8 is refused by the sampler, -o x.bmp by the image writer, a
+// missing folder by the output plan, an unreadable --reference image by the image reader).
 inline std::string errorLine(const Error& e) {
   const std::string what = e.what();
   const bool prefixed = what.compare(0, 5, "pvrt:") == 0 || what.compare(0, 5, "pvrt ") == 0;
-  const bool ours = e.code() == ExitCode::Usage || e.code() == ExitCode::OutputError;
-  return ours && !prefixed ? "pvrt: error: " + what : what;
+  // `file:line: error: ...`, or export-pov --strict's `file:line: warning: ... (--strict)`
+  const bool named = what.find(": error: ") != std::string::npos || what.find(": warning: ") != std::string::npos;
+  return prefixed || named ? what : "pvrt: error: " + what;
 }
 
 }  // namespace pvrt

@@ -243,6 +243,8 @@ pvrt_expect_error(compare_diff_dir_missing 4 "^pvrt: error: cannot write \".*/no
 # without its `pvrt: error:` prefix (exit code 4) or 309 digits of a range.
 pvrt_expect_error(export_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/s\\.pov\": no such directory"
   ABSENT nodir ARGS export-pov ${PVRT_PAPER1} -o <DIR>/nodir/s.pov)
+pvrt_expect_error(accuracy_reference_missing 3 "^pvrt: error: cannot read image \".*/nope\\.png\": "
+  ABSENT acc.csv ARGS accuracy ${PVRT_PAPER1} --reference <DIR>/nope.png --csv <DIR>/acc.csv)
 pvrt_expect_error(generate_seed_negative 2 "^pvrt: --seed: a seed is a whole number from 0 to 18446744073709551615, got -1"
   ABSENT g.xml ARGS generate -o <DIR>/g.xml --seed -1)
 pvrt_expect_error(render_seed_too_large 2 "^pvrt: --seed: a seed is a whole number from 0 to 18446744073709551615, got 18446744073709551616"
