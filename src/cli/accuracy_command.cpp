@@ -342,7 +342,7 @@ Command addAccuracyCommand(CLI::App& app) {
   c->add_option("--reference", o->golden,
                 "Also compare the pov rows with this image (POV-Ray's render, e.g. reference/paper1.png); the "
                 "render takes its size");
-  c->add_option("--seed", o->seed, "Seed of the jitter sampler");
+  c->add_option("--seed", o->seed, "Seed of the jitter sampler")->check(kSeed);
   c->add_option("-t,--threads", o->threads, "Worker threads (default: OMP_NUM_THREADS or all cores)")
       ->check(CLI::Range(1, 1024));
   c->add_flag("--quality-variant", o->qualityVariant,

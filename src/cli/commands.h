@@ -2,13 +2,42 @@
 // and returns the function that runs it (returning the process exit code).
 #pragma once
 
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <functional>
+#include <string>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 
 namespace pvrt::cli {
 
 using Command = std::function<int()>;
+
+// A seed: a whole number from 0 to 2^64 - 1, written in decimal digits. CLI11 alone read
+// "-1" as 2^64 - 1 and any larger number as 2^64 - 1 too, so that different seeds a user
+// gave silently made the same scene.
+inline const CLI::Validator kSeed(
+    [](std::string& s) -> std::string {
+      uint64_t v = 0;
+      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+      if (s.empty() || s[0] == '-' || ec != std::errc() || end != s.data() + s.size())
+        return "a seed is a whole number from 0 to 18446744073709551615, got " + s;
+      return {};
+    },
+    "UINT");
+
+// A positive number, said so (CLI::PositiveNumber names its range up to 1.8e308 in 309 digits).
+inline const CLI::Validator kPositive(
+    [](std::string& s) -> std::string {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+      if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !(v > 0) || !std::isfinite(v))
+        return "expected a positive number, got " + s;
+      return {};
+    },
+    "POSITIVE");
 
 Command addRenderCommand(CLI::App& app);
 Command addGenerateCommand(CLI::App& app);

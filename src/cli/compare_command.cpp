@@ -1,16 +1,42 @@
 // `pvrt compare A B [--diff D.png]`: how far apart two images are, in 8-bit levels.
 #include <fmt/core.h>
 
+#include <cctype>
+#include <charconv>
 #include <limits>
+#include <string>
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/error_line.h"
 #include "core/output_files.h"
 #include "image/compare.h"
 
 namespace pvrt::cli {
 
 namespace {
+
+// A share from 0 to 1 (CLI::Range lets NaN through: it is neither below nor above).
+const CLI::Validator kShare(
+    [](std::string& v) -> std::string {
+      double x = 0;
+      const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+      if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !(x >= 0 && x <= 1))
+        return "expected a share from 0 to 1, got " + v;
+      return {};
+    },
+    "0..1");
+
+// Whether a name's extension, if it has one, is .png (any case): a name of another format
+// (d.tga, d.exr) would hold PNG bytes; a name without one (a pipe, /dev/stdout) is written.
+bool namesAnotherFormat(const std::string& name) {
+  const size_t slash = name.find_last_of('/');
+  const size_t dot = name.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot + 1 == name.size()) return false;
+  std::string ext = name.substr(dot + 1);
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return ext != "png";
+}
 
 struct CompareOptions {
   std::string a, b, diff;
@@ -21,6 +47,10 @@ struct CompareOptions {
 int runCompare(const CompareOptions& o) {
   // The difference image's path is checked before the images are read.
   OutputFiles out;
+  // The difference image is a PNG: a name of another format is refused, as render refuses
+  // -o x.bmp (it wrote PNG bytes to d.tga before).
+  if (namesAnotherFormat(o.diff))
+    throw Error(ExitCode::Usage, "cannot write \"" + printableName(o.diff) + "\": --diff writes a PNG (name it .png)");
   out.input(o.a);
   out.input(o.b);
   if (!o.diff.empty()) out.output(o.diff, "--diff");
@@ -28,7 +58,9 @@ int runCompare(const CompareOptions& o) {
   try {
     r = compareFiles(o.a, o.b);
   } catch (const Error& e) {
-    fmt::print(stderr, "{}\n", e.what());
+    // An image that cannot be read ends compare with exit code 4, as an output that cannot
+    // be written does, and its line reads the same: `pvrt: error: cannot read image ...`.
+    fmt::print(stderr, "{}\n", errorLine(Error(ExitCode::OutputError, e.what())));
     return int(CompareExit::FileError);
   }
   if (r.sizeMismatch) {
@@ -74,10 +106,15 @@ Command addCompareCommand(CLI::App& app) {
   c->add_option("a", o->a, "First image")->required();
   c->add_option("b", o->b, "Second image")->required();
   c->add_option("--diff", o->diff, "Write |A-B| x scale as a PNG");
-  c->add_option("--diff-scale", o->diffScale, "Scale of the difference image")->capture_default_str();
-  c->add_option("--max-levels", o->t.maxLevels, "Largest allowed difference in levels")->capture_default_str();
+  c->add_option("--diff-scale", o->diffScale, "Scale of the difference image")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 255));
+  c->add_option("--max-levels", o->t.maxLevels, "Largest allowed difference in levels")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 255));
   c->add_option("--max-fraction-over-1", o->t.maxFractionOver1, "Allowed share of channels over 1 level")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(kShare);
   c->add_option("--max-off-by-1", o->t.maxOffBy1, "Allowed count of channels that differ by exactly 1 level (-1: any)")
       ->capture_default_str()
       ->check(CLI::Range(-1L, std::numeric_limits<long>::max()));

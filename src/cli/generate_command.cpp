@@ -75,16 +75,20 @@ Command addGenerateCommand(CLI::App& app) {
   c->add_option("-o,--output", o->output, "Scene file to write (XML)")->required();
   c->add_option("--spheres", o->g.spheres, "Number of spheres")->check(CLI::Range(0, 100000000))->capture_default_str();
   c->add_option("--lights", o->g.lights, "Number of point lights")->check(CLI::Range(0, 1000))->capture_default_str();
-  c->add_option("--seed", o->g.seed, "Random seed")->capture_default_str();
-  c->add_option("--width", o->g.width, "Image width stored in the scene")->check(CLI::Range(1, 65536))->capture_default_str();
-  c->add_option("--height", o->g.height, "Image height stored in the scene")->check(CLI::Range(1, 65536))->capture_default_str();
+  c->add_option("--seed", o->g.seed, "Random seed")->check(kSeed)->capture_default_str();
+  c->add_option("--width", o->g.width, "Image width stored in the scene")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  c->add_option("--height", o->g.height, "Image height stored in the scene")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
   c->add_option("--radius-min", o->g.radiusMin,
-                 "Smallest sphere radius (default 0.2, times (100/N)^(1/3) above N = 100 spheres)")
-      ->check(CLI::PositiveNumber)
+                "Smallest sphere radius (default 0.2, times (100/N)^(1/3) above N = 100 spheres)")
+      ->check(kPositive)
       ->each([o](const std::string&) { o->radiusMinGiven = true; });
   c->add_option("--radius-max", o->g.radiusMax,
-                 "Largest sphere radius (default 0.8, times (100/N)^(1/3) above N = 100 spheres)")
-      ->check(CLI::PositiveNumber)
+                "Largest sphere radius (default 0.8, times (100/N)^(1/3) above N = 100 spheres)")
+      ->check(kPositive)
       ->each([o](const std::string&) { o->radiusMaxGiven = true; });
   c->add_option("--sphere-box", o->sphereBox, "Sphere centres' box: x0 y0 z0 x1 y1 z1")->expected(6);
   c->add_option("--light-box", o->lightBox, "Light positions' box: x0 y0 z0 x1 y1 z1")->expected(6);

@@ -3,11 +3,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <string_view>
 
 #include "cli/commands.h"
 #include "cli/huge_pages.h"
 #include "core/error.h"
+#include "core/error_line.h"
 #include "parallel/threads.h"
 
 int main(int argc, char** argv) {
@@ -51,11 +51,7 @@ int main(int argc, char** argv) {
     for (const CLI::App* sub : app.get_subcommands())
       return commands.at(sub)();
   } catch (const pvrt::Error& e) {
-    // A bad command line reads as the parser's own errors do, "pvrt: ...", whichever part of
-    // pvrt found it (--spp 8 is refused by the sampler, -o x.bmp by the image writer).
-    const std::string_view what = e.what();
-    const bool prefixed = what.substr(0, 5) == "pvrt:" || what.substr(0, 5) == "pvrt ";
-    std::fprintf(stderr, "%s%s\n", e.code() == pvrt::ExitCode::Usage && !prefixed ? "pvrt: error: " : "", e.what());
+    std::fprintf(stderr, "%s\n", pvrt::errorLine(e).c_str());
     return int(e.code());
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "pvrt: error: out of memory\n");

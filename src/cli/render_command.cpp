@@ -20,6 +20,7 @@
 #include "cli/stats_json.h"
 #include "core/output_files.h"
 #include "core/error.h"
+#include "core/error_line.h"
 #include "core/interrupt.h"
 #include "core/memory_limit.h"
 #include "image/image_io.h"
@@ -280,8 +281,9 @@ struct Prepared {
 // `writes`: this process writes the outputs (not the other MPI ranks).
 Prepared prepare(const RenderOptions& o, bool writes) {
   imageFormatOf(o.output);
-  if (o.hasTimeBudget && !(o.timeBudget > 0))
-    throw Error(ExitCode::Usage, fmt::format("--time-budget must be a positive number of seconds, got {}", o.timeBudget));
+  if (o.hasTimeBudget && !(o.timeBudget > 0 && std::isfinite(o.timeBudget)))
+    throw Error(ExitCode::Usage,
+                fmt::format("--time-budget must be a positive number of seconds, got {}", o.timeBudget));
   if (o.hasTimeBudget && o.backendName == "mpi")
     throw Error(ExitCode::Usage, "--time-budget is not available with --backend mpi");
   if (o.threads > 0) setThreadBudget(o.threads);  // every stage, not only the render
@@ -479,7 +481,7 @@ int runMpi(const RenderOptions& o) {
     if (envInt("PVRT_FAIL_RANK", -1) == me)
       throw Error(ExitCode::SceneError, fmt::format("rank {}: injected failure (PVRT_FAIL_RANK)", me));
   } catch (const Error& e) {
-    failure = std::to_string(int(e.code())) + "|" + e.what();
+    failure = std::to_string(int(e.code())) + "|" + errorLine(e);
   } catch (const std::exception& e) {
     failure = std::to_string(int(ExitCode::Internal)) + "|pvrt: rank " + std::to_string(me) + ": " + e.what();
   }
@@ -506,7 +508,7 @@ int runMpi(const RenderOptions& o) {
     r = renderDistributed(p->scene, p->settings, d);
     renderCpu = processCpuSeconds() - cpu0;
   } catch (const Error& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    std::fprintf(stderr, "%s\n", errorLine(e).c_str());
     removeStagedFilesNow();  // the abort runs no destructors
     cluster::abortAll(int(e.code()));
   } catch (const std::exception& e) {
@@ -584,7 +586,7 @@ Command addRenderCommand(CLI::App& app) {
               "Trace --aa-threshold 0 (+A0.0) in POV-Ray's order: block by block (--aa-block), each block's row "
               "above and column left first, the shadow cache kept within a block (closer to POV-Ray where a shadow "
               "edge crosses pixels; default: pixel by pixel)");
-  c->add_option("--seed", o->seed, "Seed of the jitter and sequence samplers");
+  c->add_option("--seed", o->seed, "Seed of the jitter and sequence samplers")->check(kSeed);
   c->add_option("--backend", o->backendName, "serial, openmp or mpi (start with mpirun; OpenMP threads in each rank)")
       ->check(CLI::IsMember({"serial", "openmp", "mpi"}))
       ->capture_default_str();

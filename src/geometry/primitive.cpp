@@ -48,7 +48,9 @@ std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, dou
   int nearFace = -1, farFace = -1;
   for (int a = 0; a < 3; ++a) {
     const double o = ray.origin[a];
-    if (std::fabs(d[a]) <= kPovEpsilon * len) {  // parallel to this slab (POV-Ray's EPSILON)
+    // Parallel to this slab: POV-Ray's EPSILON on the direction as it is, the world ray's or,
+    // for a turned box, the one MInvTransDirection gives (not made unit).
+    if (std::fabs(d[a]) <= kPovEpsilon) {
       if (o < b.lo[a] || o > b.hi[a]) return std::nullopt;
       continue;
     }

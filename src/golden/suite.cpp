@@ -24,6 +24,12 @@ Suite openSuite(const std::string& scenes, const std::string& references) {
     if (f.path().extension() == ".xml" && f.is_regular_file(ec)) s.sceneNames.push_back(f.path().stem().string());
   std::sort(s.sceneNames.begin(), s.sceneNames.end());
   s.manifest = readManifest(s.manifestPath());
+  // A folder with neither scenes nor references has no test to run: passing it would let a
+  // misspelt or emptied suite pass in CI (it did, with 0 tests), and make would write an empty
+  // manifest into it.
+  if (s.sceneNames.empty() && s.manifest.entries.empty())
+    throw Error(ExitCode::Usage, "pvrt golden: error: \"" + printableName(scenes) +
+                                     "\" holds no scenes (*.xml) and no references: nothing to test");
   s.tolerances = readTolerances(references + "/tolerances.tsv");
   return s;
 }

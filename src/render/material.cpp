@@ -41,6 +41,9 @@ FinishDesc single(FinishDesc f) {
 
 InteriorDesc single(InteriorDesc in) {
   in.ior = single(in.ior);
+  // POV-Ray's Post_Process: an interior whose (float) IOR is 0 takes the atmosphere's, 1; a
+  // positive ior below the float range (1e-46) is such a one.
+  if (in.ior == 0) in.ior = 1;
   in.fadeDistance = single(in.fadeDistance);
   in.fadePower = single(in.fadePower);
   in.fadeColor = single(in.fadeColor);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -70,11 +71,6 @@ double similarityScale(const Affine& a) {
   return std::sqrt(s2);
 }
 
-bool isDiagonal(const Affine& a) {
-  return a.m[0][1] == 0 && a.m[0][2] == 0 && a.m[1][0] == 0 && a.m[1][2] == 0 && a.m[2][0] == 0 &&
-         a.m[2][1] == 0;
-}
-
 // POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
 Vec3 toFloat(const Vec3& v) { return single(v); }
 
@@ -108,13 +104,27 @@ class PrimitiveBuilder {
     }
     add(shape, false);
   }
+  // A box as POV-Ray's parser makes it (Parse_Box, Box::Translate, Box::Scale,
+  // Box::Transform): the corners sorted, each translate and scale before the first rotate or
+  // matrix moving them one at a time, and from that rotate or matrix on every step composed
+  // into the box's TRANSFORM, so that a turned box's faces tie with a plane as POV-Ray's do.
   void operator()(const BoxDesc& b) {
-    if (isDiagonal(xf_)) {
-      const Vec3 c1 = xf_.applyPoint(b.corner1), c2 = xf_.applyPoint(b.corner2);
-      add(BoxShape{vmin(c1, c2), vmax(c1, c2)}, false);
-      return;
+    Vec3 lo = vmin(b.corner1, b.corner2), hi = vmax(b.corner1, b.corner2);
+    std::optional<PovTransform> trans;
+    for (const TransformStep& step : steps_.steps) {
+      if (!trans && step.kind == TransformStep::Kind::Translate) {
+        lo = lo + step.v;
+        hi = hi + step.v;
+      } else if (!trans && step.kind == TransformStep::Kind::Scale) {
+        const Vec3 a = mul(lo, step.v), c = mul(hi, step.v);
+        lo = vmin(a, c);
+        hi = vmax(a, c);
+      } else {
+        if (!trans) trans = PovTransform::identity();
+        trans->then(povStep(step));
+      }
     }
-    add(BoxShape{vmin(b.corner1, b.corner2), vmax(b.corner1, b.corner2)}, true);
+    if (add(BoxShape{lo, hi}, false) && trans) primitive().transform = share(trans->toTransform());
   }
   // Cylinders and cones in POV-Ray's canonical space, through its transform composed as its
   // parser composes it: their caps then tie with a plane as POV-Ray's do.

@@ -944,9 +944,25 @@ class Loader {
       if (!materialPart(c, o.material, pig, fin, inte))
         throw errorAt(c, "unknown element inside <" + std::string(name) + ">");
     }
-    if (const auto* mesh = std::get_if<MeshDesc>(&o.shape))
+    if (const auto* mesh = std::get_if<MeshDesc>(&o.shape)) {
       if (mesh->triangles.empty() && mesh->smoothTriangles.empty())
         throw errorAt(e, "a mesh needs at least one triangle or smooth_triangle");
+      // POV-Ray's Parse_Mesh leaves out each triangle whose corners give a cross product of
+      // length 0 (Mesh::Degenerate) and refuses a mesh left with none ("No triangles in
+      // triangle mesh"): such a mesh's export would not parse.
+      const auto flat = [](const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+        const Vec3 n = cross(p1 - p2, p3 - p2);
+        return std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z) == 0.0;
+      };
+      const bool none = std::all_of(mesh->triangles.begin(), mesh->triangles.end(),
+                                    [&](const TriangleDesc& t) { return flat(t.p1, t.p2, t.p3); }) &&
+                        std::all_of(mesh->smoothTriangles.begin(), mesh->smoothTriangles.end(),
+                                    [&](const SmoothTriangleDesc& t) { return flat(t.p1, t.p2, t.p3); });
+      if (none)
+        throw errorAt(e,
+                      "every triangle of the mesh has its corners on a line, so it has none (POV-Ray: \"No "
+                      "triangles in triangle mesh\")");
+    }
     checkSingular(e, o.transforms);
     return o;
   }

@@ -213,29 +213,60 @@ endforeach()
 # Output paths checked before any work: each of these renders would take minutes (4000 x 2500
 # at 16 samples), so the test's 60 s limit fails a check made only after the render.
 set(LONG_RENDER -W 4000 -H 2500 --spp 16 --quiet)
-pvrt_expect_error(output_is_the_scene 4 "cannot write \".*/scene\\.png\": it is an input of this run$"
+pvrt_expect_error(output_is_the_scene 4 "^pvrt: error: cannot write \".*/scene\\.png\": it is an input of this run$"
   EXISTING scene.png ARGS render <DIR>/scene.png -o <DIR>/scene.png ${LONG_RENDER})
-pvrt_expect_error(save_scene_is_the_scene 4 "cannot write \".*/scene\\.xml\": it is an input of this run$"
+pvrt_expect_error(save_scene_is_the_scene 4 "^pvrt: error: cannot write \".*/scene\\.xml\": it is an input of this run$"
   EXISTING scene.xml ABSENT out.png ARGS render <DIR>/scene.xml -o <DIR>/out.png --save-scene <DIR>/scene.xml ${LONG_RENDER})
-pvrt_expect_error(output_twice_load_map 4 "cannot write \".*/x\\.png\": it is also the output of -o"
+pvrt_expect_error(output_twice_load_map 4 "^pvrt: error: cannot write \".*/x\\.png\": it is also the output of -o"
   ABSENT x.png x.exr ARGS render ${PVRT_PAPER1} -o <DIR>/x.png --load-map <DIR>/x ${LONG_RENDER})
-pvrt_expect_error(output_twice_save_scene 4 "cannot write \".*/x\\.png\": it is also the output of -o"
+pvrt_expect_error(output_twice_save_scene 4 "^pvrt: error: cannot write \".*/x\\.png\": it is also the output of -o"
   EXISTING x.png ARGS render ${PVRT_PAPER1} -o <DIR>/x.png --save-scene <DIR>/./x.png ${LONG_RENDER})
-pvrt_expect_error(save_scene_dir_missing 4 "cannot write \".*/nope/s\\.xml\": no such directory"
+pvrt_expect_error(save_scene_dir_missing 4 "^pvrt: error: cannot write \".*/nope/s\\.xml\": no such directory"
   ABSENT out.png nope ARGS render ${PVRT_PAPER1} -o <DIR>/out.png --save-scene <DIR>/nope/s.xml ${LONG_RENDER})
-pvrt_expect_error(load_map_dir_missing 4 "cannot write \".*/nope/m\\.exr\": no such directory"
+pvrt_expect_error(load_map_dir_missing 4 "^pvrt: error: cannot write \".*/nope/m\\.exr\": no such directory"
   ABSENT out.png nope ARGS render ${PVRT_PAPER1} -o <DIR>/out.png --load-map <DIR>/nope/m ${LONG_RENDER})
-pvrt_expect_error(output_is_a_directory 4 "cannot write \"/tmp\": it is a directory"
+pvrt_expect_error(output_is_a_directory 4 "^pvrt: error: cannot write \"/tmp\": it is a directory"
   ABSENT out.png ARGS render ${PVRT_PAPER1} -o /tmp ${LONG_RENDER})
-pvrt_expect_error(accuracy_plot_dir_missing 4 "cannot write \".*/nodir/a\\.png\": no such directory"
+pvrt_expect_error(accuracy_plot_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/a\\.png\": no such directory"
   ABSENT nodir ARGS accuracy ${PVRT_PAPER1} --plot <DIR>/nodir/a.png)
-pvrt_expect_error(accuracy_csv_dir_missing 4 "cannot write \".*/nodir/a\\.csv\": no such directory"
+pvrt_expect_error(accuracy_csv_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/a\\.csv\": no such directory"
   ABSENT nodir ARGS accuracy ${PVRT_PAPER1} --csv <DIR>/nodir/a.csv)
-pvrt_expect_error(generate_dir_missing 4 "cannot write \".*/nodir/g\\.xml\": no such directory"
+pvrt_expect_error(generate_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/g\\.xml\": no such directory"
   ABSENT nodir ARGS generate --spheres 10000000 -o <DIR>/nodir/g.xml)
-pvrt_expect_error(compare_diff_dir_missing 4 "cannot write \".*/nodir/d\\.png\": no such directory"
+pvrt_expect_error(compare_diff_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/d\\.png\": no such directory"
   ABSENT nodir ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
   --diff <DIR>/nodir/d.png)
+
+# Hostile command lines of the fourth blind round (blind9, docs/fidelity.md): each was taken
+# silently (a seed of -1 or 2^64 was 2^64 - 1, a NaN share failed every comparison, a diff
+# named .tga held PNG bytes, an infinite time budget ran to --spp 65536) or printed an error
+# without its `pvrt: error:` prefix (exit code 4) or 309 digits of a range.
+pvrt_expect_error(export_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/s\\.pov\": no such directory"
+  ABSENT nodir ARGS export-pov ${PVRT_PAPER1} -o <DIR>/nodir/s.pov)
+pvrt_expect_error(accuracy_reference_missing 3 "^pvrt: error: cannot read image \".*/nope\\.png\": "
+  ABSENT acc.csv ARGS accuracy ${PVRT_PAPER1} --reference <DIR>/nope.png --csv <DIR>/acc.csv)
+pvrt_expect_error(generate_seed_negative 2 "^pvrt: --seed: a seed is a whole number from 0 to 18446744073709551615, got -1"
+  ABSENT g.xml ARGS generate -o <DIR>/g.xml --seed -1)
+pvrt_expect_error(render_seed_too_large 2 "^pvrt: --seed: a seed is a whole number from 0 to 18446744073709551615, got 18446744073709551616"
+  ARGS render ${PVRT_PAPER1} --sampler jitter --seed 18446744073709551616)
+pvrt_expect_error(generate_radius_zero 2 "^pvrt: --radius-min: expected a positive number, got 0 \\(see --help\\)$"
+  ABSENT g.xml ARGS generate -o <DIR>/g.xml --radius-min 0)
+pvrt_expect_error(render_time_budget_inf 2 "^pvrt: error: --time-budget must be a positive number of seconds, got inf$"
+  ARGS render ${PVRT_PAPER1} --time-budget inf)
+foreach(share nan -0.5 2)
+  pvrt_expect_error(compare_fraction_${share} 2 "^pvrt: --max-fraction-over-1: expected a share from 0 to 1, got ${share}"
+    ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper2.png
+    --max-fraction-over-1 ${share} --diff <DIR>/d.png)
+endforeach()
+pvrt_expect_error(compare_levels_negative 2 "^pvrt: --max-levels: Value -1 not in range 0 to 255"
+  ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
+  --max-levels -1 --diff <DIR>/d.png)
+pvrt_expect_error(compare_diff_scale_zero 2 "^pvrt: --diff-scale: Value 0 not in range 1 to 255"
+  ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
+  --diff-scale 0 --diff <DIR>/d.png)
+pvrt_expect_error(compare_diff_tga 2 "^pvrt: error: cannot write \".*/d\\.tga\": --diff writes a PNG \\(name it \\.png\\)$"
+  EXISTING d.tga ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
+  --diff <DIR>/d.tga)
 
 # Smaller things (issue 29, item 6).
 # OMP_NUM_THREADS is checked as --threads is (libgomp aborted starting 100000 threads).
@@ -257,7 +288,7 @@ add_test(NAME e2e.omp_num_threads_list COMMAND env OMP_NUM_THREADS=2,1 $<TARGET_
 set_tests_properties(e2e.omp_num_threads_list PROPERTIES LABELS e2e)
 # Images that never end are refused, not read for ever (the 20 s limit fails a hang).
 foreach(device zero urandom)
-  pvrt_expect_error(compare_dev_${device} 4 "^cannot read image \"/dev/${device}\": not a regular file$"
+  pvrt_expect_error(compare_dev_${device} 4 "^pvrt: error: cannot read image \"/dev/${device}\": not a regular file$"
     ABSENT d.png ARGS compare /dev/${device} ${PROJECT_SOURCE_DIR}/reference/paper1.png)
   set_tests_properties(e2e.error.compare_dev_${device} PROPERTIES TIMEOUT 20)
 endforeach()
@@ -332,7 +363,7 @@ pvrt_expect_error(region_not_a_number 2 "^pvrt: error: --start-col 1/4: expected
 add_test(NAME e2e.stats_json
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/stats_json.sh $<TARGET_FILE:pvrt> ${PVRT_PAPER1} ${PVRT_E2E_DIR}/stats-json)
 set_tests_properties(e2e.stats_json PROPERTIES LABELS e2e TIMEOUT 120)
-pvrt_expect_error(stats_json_directory 4 "^cannot write \".*/stats_json_directory\": it is a directory$" ABSENT out.png
+pvrt_expect_error(stats_json_directory 4 "^pvrt: error: cannot write \".*/stats_json_directory\": it is a directory$" ABSENT out.png
   ARGS render ${PVRT_PAPER1} -W 8 -H 8 -o <DIR>/out.png --stats-json <DIR>)
 
 # export-pov: the header's command line is the AA recipe that samples as pvrt does.

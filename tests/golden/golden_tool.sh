@@ -197,12 +197,17 @@ mpi)  # the MPI backend through the real mpirun
 usage)  # usage errors have their own code, 2; unwritable output 4; malformed suite files 3
   expect 2 "$pvrt" golden run "$dir/nowhere"
   has 'error: ".*/nowhere" is not a folder of scenes' "$dir/out"
+  mkdir -p "$dir/empty"  # blind9: an empty folder passed, with 0 tests, and make wrote a manifest into it
+  expect 2 "$pvrt" golden run "$dir/empty" --out "$out"
+  has 'error: ".*/empty" holds no scenes (\*.xml) and no references: nothing to test' "$dir/out"
+  expect 2 "$pvrt" golden make "$dir/empty"
+  [ ! -e "$dir/empty/reference" ] || fail "golden make wrote into an empty folder"
   expect 2 "$pvrt" golden run "$dir" --backends serial,gpu --out "$out"
   has 'unknown backend "gpu"' "$dir/out"
   expect 2 "$pvrt" golden run "$dir" --scene nosuch --out "$out"
   expect 2 "$pvrt" golden
   expect 4 "$pvrt" golden run "$dir" --out /proc/no-such-folder
-  has '^cannot write "/proc/no-such-folder/images": ' "$dir/out"
+  has '^pvrt: error: cannot write "/proc/no-such-folder/images": ' "$dir/out"
   expect 2 "$pvrt" golden compare "$dir"
   printf 'scene\tvariant\n' >"$dir/reference/manifest.tsv"
   printf 'x\ty\n' >>"$dir/reference/manifest.tsv"

@@ -52,6 +52,17 @@ TEST(MaterialTable, SurfacesDifferingInOneFieldStayApart) {
   EXPECT_DOUBLE_EQ(table.surface(table[4]).specularExponent, 100);
 }
 
+// POV-Ray keeps the ior as a float and, in Post_Process, gives an interior whose ior is 0
+// the atmosphere's (1): an ior below the float range refracts nothing (blind9's ior 1e-300
+// turned the glass into a dark mirror; POV-Ray passes straight through it).
+TEST(MaterialTable, AnIorBelowTheFloatRangeIsTheAtmospheresAsInPovRay) {
+  MaterialTable table;
+  table.add(solid({1, 1, 1}, 0.1, 1e-300), Affine{});
+  table.add(solid({1, 1, 1}, 0.1, 1e-40), Affine{});
+  EXPECT_EQ(table.surface(table[0]).interior.ior, 1.0);
+  EXPECT_EQ(table.surface(table[1]).interior.ior, double(1e-40f));
+}
+
 TEST(MaterialTable, DerivedFlags) {
   MaterialTable table;
   MaterialDesc glass = solid({1, 1, 1}, 0.1, 1.5);

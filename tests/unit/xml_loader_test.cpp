@@ -1301,5 +1301,19 @@ TEST(XmlLoader, BigFileGivesBackItsTextAndStillGivesTheWholeParsesAnswer) {
   std::filesystem::remove(path);
 }
 
+// blind9: a mesh all of whose triangles have their corners on a line rendered as nothing,
+// and its export did not parse (POV-Ray's Parse_Mesh: "No triangles in triangle mesh").
+// One triangle of non-zero area keeps it; a lone degenerate triangle is still legal.
+TEST(XmlLoader, AMeshOfOnlyDegenerateTrianglesIsRefusedAsPovRayRefusesIt) {
+  EXPECT_SCENE_ERROR(inScene("<mesh>\n<triangle p1=\"1 1 1\" p2=\"1 1 1\" p3=\"1 1 1\"/>"
+                             "<triangle p1=\"0 0 0\" p2=\"1 1 1\" p3=\"2 2 2\"/>\n</mesh>"),
+                     "t.xml:2: error: mesh: every triangle of the mesh has its corners on a line, so it has none "
+                     "(POV-Ray: \"No triangles in triangle mesh\")");
+  EXPECT_NO_THROW(loadSceneString(inScene("<mesh><triangle p1=\"1 1 1\" p2=\"1 1 1\" p3=\"1 1 1\"/>"
+                                          "<triangle p1=\"0 0 0\" p2=\"1 0 0\" p3=\"0 1 0\"/></mesh>"),
+                                  "t.xml"));
+  EXPECT_NO_THROW(loadSceneString(inScene("<triangle p1=\"1 1 1\" p2=\"1 1 1\" p3=\"1 1 1\"/>"), "t.xml"));
+}
+
 }  // namespace
 }  // namespace pvrt
