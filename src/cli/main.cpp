@@ -3,12 +3,38 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <optional>
+#include <string>
 
 #include "cli/commands.h"
 #include "cli/huge_pages.h"
 #include "core/error.h"
 #include "core/error_line.h"
 #include "parallel/threads.h"
+
+namespace {
+
+// The first word of the command line that stands where `app` or one of its commands needs a
+// command and names none, told as an unknown command with the ones there are; nothing when
+// every such word names one (options are left to CLI11).
+std::optional<std::string> unknownCommand(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* at = &app;
+  for (int i = 1; i < argc && at->get_require_subcommand_min() > 0; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') return std::nullopt;
+    const CLI::App* next = nullptr;
+    std::string names;
+    for (const CLI::App* sub : at->get_subcommands([](const CLI::App*) { return true; })) {
+      if (sub->check_name(word)) next = sub;
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!next) return "unknown command \"" + pvrt::printableName(word) + "\" (the commands: " + names + ")";
+    at = next;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Checked as --threads is, before anything starts threads: libgomp would try to start every
@@ -25,7 +51,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "pvrt 0.1.0");
   // One line per error, like every other error pvrt prints.
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "pvrt: " + std::string(e.what()) + " (see --help)\n";
+    return "pvrt: error: " + std::string(e.what()) + " (see --help)\n";
   });
   std::map<const CLI::App*, pvrt::cli::Command> commands;
   auto add = [&](pvrt::cli::Command (*make)(CLI::App&)) {
@@ -41,6 +67,12 @@ int main(int argc, char** argv) {
   add(pvrt::cli::addMpiBenchCommand);
   add(pvrt::cli::addGoldenCommand);
 
+  // A word where a command is required that names none (`pvrt rendr`, `pvrt golden rnu`) is
+  // said to be one, rather than CLI11's "A subcommand is required".
+  if (const std::optional<std::string> unknown = unknownCommand(app, argc, argv)) {
+    std::fprintf(stderr, "pvrt: error: %s (see --help)\n", unknown->c_str());
+    return int(pvrt::ExitCode::Usage);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -87,7 +87,12 @@ pvrt_expect_error(missing_directory 3 "^/nonexistent-dir/a\\.xml: error: cannot 
   ARGS render /nonexistent-dir/a.xml)
 pvrt_expect_error(directory_as_scene 3 "^.*/bad: error: cannot read scene: it is a directory$" ARGS render ${BAD})
 pvrt_expect_error(device_as_scene 3 "^/dev/zero: error: cannot read scene: not a regular file$" ARGS render /dev/zero)
-pvrt_expect_error(no_scene_given 2 "^pvrt: scene is required" ARGS render)
+pvrt_expect_error(no_scene_given 2 "^pvrt: error: scene is required" ARGS render)
+# A word that names no command, at the top and below golden: said so, with the commands there are.
+pvrt_expect_error(unknown_command 2 "^pvrt: error: unknown command \"rendr\" \\(the commands: render, generate, export-pov, compare, accuracy, mpi-bench, golden\\) \\(see --help\\)$"
+  ARGS rendr ${PVRT_PAPER1})
+pvrt_expect_error(golden_unknown_command 2 "^pvrt: error: unknown command \"rnu\" \\(the commands: .*run.*\\)"
+  ARGS golden rnu)
 # Unreadable: as root every file is readable, so the check runs as user nobody (or is skipped).
 add_test(NAME e2e.error.unreadable_scene
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/unreadable.sh ${PVRT_EXPECT_ERROR} $<TARGET_FILE:pvrt>
@@ -245,23 +250,23 @@ pvrt_expect_error(export_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/s\
   ABSENT nodir ARGS export-pov ${PVRT_PAPER1} -o <DIR>/nodir/s.pov)
 pvrt_expect_error(accuracy_reference_missing 3 "^pvrt: error: cannot read image \".*/nope\\.png\": "
   ABSENT acc.csv ARGS accuracy ${PVRT_PAPER1} --reference <DIR>/nope.png --csv <DIR>/acc.csv)
-pvrt_expect_error(generate_seed_negative 2 "^pvrt: --seed: a seed is a whole number from 0 to 18446744073709551615, got -1"
+pvrt_expect_error(generate_seed_negative 2 "^pvrt: error: --seed: a seed is a whole number from 0 to 18446744073709551615, got -1"
   ABSENT g.xml ARGS generate -o <DIR>/g.xml --seed -1)
-pvrt_expect_error(render_seed_too_large 2 "^pvrt: --seed: a seed is a whole number from 0 to 18446744073709551615, got 18446744073709551616"
+pvrt_expect_error(render_seed_too_large 2 "^pvrt: error: --seed: a seed is a whole number from 0 to 18446744073709551615, got 18446744073709551616"
   ARGS render ${PVRT_PAPER1} --sampler jitter --seed 18446744073709551616)
-pvrt_expect_error(generate_radius_zero 2 "^pvrt: --radius-min: expected a positive number, got 0 \\(see --help\\)$"
+pvrt_expect_error(generate_radius_zero 2 "^pvrt: error: --radius-min: expected a positive number, got 0 \\(see --help\\)$"
   ABSENT g.xml ARGS generate -o <DIR>/g.xml --radius-min 0)
 pvrt_expect_error(render_time_budget_inf 2 "^pvrt: error: --time-budget must be a positive number of seconds, got inf$"
   ARGS render ${PVRT_PAPER1} --time-budget inf)
 foreach(share nan -0.5 2)
-  pvrt_expect_error(compare_fraction_${share} 2 "^pvrt: --max-fraction-over-1: expected a share from 0 to 1, got ${share}"
+  pvrt_expect_error(compare_fraction_${share} 2 "^pvrt: error: --max-fraction-over-1: expected a share from 0 to 1, got ${share}"
     ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper2.png
     --max-fraction-over-1 ${share} --diff <DIR>/d.png)
 endforeach()
-pvrt_expect_error(compare_levels_negative 2 "^pvrt: --max-levels: Value -1 not in range 0 to 255"
+pvrt_expect_error(compare_levels_negative 2 "^pvrt: error: --max-levels: Value -1 not in range 0 to 255"
   ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
   --max-levels -1 --diff <DIR>/d.png)
-pvrt_expect_error(compare_diff_scale_zero 2 "^pvrt: --diff-scale: Value 0 not in range 1 to 255"
+pvrt_expect_error(compare_diff_scale_zero 2 "^pvrt: error: --diff-scale: Value 0 not in range 1 to 255"
   ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper1.png
   --diff-scale 0 --diff <DIR>/d.png)
 pvrt_expect_error(compare_diff_tga 2 "^pvrt: error: cannot write \".*/d\\.tga\": --diff writes a PNG \\(name it \\.png\\)$"
