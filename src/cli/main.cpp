@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/huge_pages.h"
@@ -14,23 +15,32 @@
 
 namespace {
 
-// The first word of the command line that stands where `app` or one of its commands needs a
-// command and names none, told as an unknown command with the ones there are; nothing when
-// every such word names one (options are left to CLI11).
+// The commands `app` has, for messages: "render, generate, ...".
+std::string commandNames(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  return names;
+}
+
+// Where `app` or one of its commands needs a command: the first word that names none, told as
+// an unknown command with the ones there are, or the command line ending without one; nothing
+// when every such word names one (options are left to CLI11).
 std::optional<std::string> unknownCommand(const CLI::App& app, int argc, char** argv) {
   const CLI::App* at = &app;
-  for (int i = 1; i < argc && at->get_require_subcommand_min() > 0; ++i) {
+  int i = 1;
+  for (; i < argc && at->get_require_subcommand_min() > 0; ++i) {
     const std::string word = argv[i];
     if (word.empty() || word[0] == '-') return std::nullopt;
-    const CLI::App* next = nullptr;
-    std::string names;
-    for (const CLI::App* sub : at->get_subcommands([](const CLI::App*) { return true; })) {
-      if (sub->check_name(word)) next = sub;
-      names += (names.empty() ? "" : ", ") + sub->get_name();
-    }
-    if (!next) return "unknown command \"" + pvrt::printableName(word) + "\" (the commands: " + names + ")";
-    at = next;
+    const std::vector<const CLI::App*> next =
+        at->get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); });
+    if (next.empty())
+      return "unknown command \"" + pvrt::printableName(word) + "\" (the commands: " + commandNames(*at) + ")";
+    at = next.front();
   }
+  if (i == argc && at->get_require_subcommand_min() > 0)
+    return (at == &app ? std::string() : at->get_name() + ": ") +
+           "a command is required (the commands: " + commandNames(*at) + ")";
   return std::nullopt;
 }
 
@@ -50,9 +60,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "pvrt 0.1.0");
   // One line per error, like every other error pvrt prints.
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "pvrt: error: " + std::string(e.what()) + " (see --help)\n";
-  });
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& e) { return "pvrt: error: " + std::string(e.what()) + " (see --help)\n"; });
   std::map<const CLI::App*, pvrt::cli::Command> commands;
   auto add = [&](pvrt::cli::Command (*make)(CLI::App&)) {
     const size_t before = app.get_subcommands({}).size();
@@ -80,8 +89,7 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : int(pvrt::ExitCode::Usage);
   }
   try {
-    for (const CLI::App* sub : app.get_subcommands())
-      return commands.at(sub)();
+    for (const CLI::App* sub : app.get_subcommands()) return commands.at(sub)();
   } catch (const pvrt::Error& e) {
     std::fprintf(stderr, "%s\n", pvrt::errorLine(e).c_str());
     return int(e.code());

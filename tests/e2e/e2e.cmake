@@ -93,6 +93,11 @@ pvrt_expect_error(unknown_command 2 "^pvrt: error: unknown command \"rendr\" \\(
   ARGS rendr ${PVRT_PAPER1})
 pvrt_expect_error(golden_unknown_command 2 "^pvrt: error: unknown command \"rnu\" \\(the commands: .*run.*\\)"
   ARGS golden rnu)
+# No command at all (no -o either: an option is CLI11's to judge).
+pvrt_expect_error(no_command 2 "^pvrt: error: a command is required \\(the commands: render, generate, .*\\) \\(see --help\\)$"
+  ABSENT out.png)
+pvrt_expect_error(golden_no_command 2 "^pvrt: error: golden: a command is required \\(the commands: run, .*\\)"
+  ABSENT out.png ARGS golden)
 # Unreadable: as root every file is readable, so the check runs as user nobody (or is skipped).
 add_test(NAME e2e.error.unreadable_scene
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/unreadable.sh ${PVRT_EXPECT_ERROR} $<TARGET_FILE:pvrt>
