@@ -15,15 +15,21 @@ namespace pvrt::cli {
 
 using Command = std::function<int()>;
 
+// Whether all of `s` is one number, read into `v` (std::from_chars: no sign for an unsigned
+// type, no spaces, nothing left over).
+template <class T>
+bool parsesWhole(const std::string& s, T& v) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  return !s.empty() && ec == std::errc() && end == s.data() + s.size();
+}
+
 // A seed: a whole number from 0 to 2^64 - 1, written in decimal digits. CLI11 alone read
 // "-1" as 2^64 - 1 and any larger number as 2^64 - 1 too, so that different seeds a user
 // gave silently made the same scene.
 inline const CLI::Validator kSeed(
     [](std::string& s) -> std::string {
       uint64_t v = 0;
-      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-      if (s.empty() || s[0] == '-' || ec != std::errc() || end != s.data() + s.size())
-        return "a seed is a whole number from 0 to 18446744073709551615, got " + s;
+      if (!parsesWhole(s, v)) return "a seed is a whole number from 0 to 18446744073709551615, got " + s;
       return {};
     },
     "UINT");
@@ -32,9 +38,7 @@ inline const CLI::Validator kSeed(
 inline const CLI::Validator kPositive(
     [](std::string& s) -> std::string {
       double v = 0;
-      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-      if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !(v > 0) || !std::isfinite(v))
-        return "expected a positive number, got " + s;
+      if (!parsesWhole(s, v) || !(v > 0) || !std::isfinite(v)) return "expected a positive number, got " + s;
       return {};
     },
     "POSITIVE");

@@ -1,8 +1,6 @@
 // `pvrt compare A B [--diff D.png]`: how far apart two images are, in 8-bit levels.
 #include <fmt/core.h>
 
-#include <cctype>
-#include <charconv>
 #include <limits>
 #include <string>
 
@@ -11,6 +9,7 @@
 #include "core/error_line.h"
 #include "core/output_files.h"
 #include "image/compare.h"
+#include "image/image_io.h"
 
 namespace pvrt::cli {
 
@@ -20,23 +19,10 @@ namespace {
 const CLI::Validator kShare(
     [](std::string& v) -> std::string {
       double x = 0;
-      const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
-      if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !(x >= 0 && x <= 1))
-        return "expected a share from 0 to 1, got " + v;
+      if (!parsesWhole(v, x) || !(x >= 0 && x <= 1)) return "expected a share from 0 to 1, got " + v;
       return {};
     },
     "0..1");
-
-// Whether a name's extension, if it has one, is .png (any case): a name of another format
-// (d.tga, d.exr) would hold PNG bytes; a name without one (a pipe, /dev/stdout) is written.
-bool namesAnotherFormat(const std::string& name) {
-  const size_t slash = name.find_last_of('/');
-  const size_t dot = name.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot + 1 == name.size()) return false;
-  std::string ext = name.substr(dot + 1);
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return ext != "png";
-}
 
 struct CompareOptions {
   std::string a, b, diff;
@@ -48,8 +34,8 @@ int runCompare(const CompareOptions& o) {
   // The difference image's path is checked before the images are read.
   OutputFiles out;
   // The difference image is a PNG: a name of another format is refused, as render refuses
-  // -o x.bmp (it wrote PNG bytes to d.tga before).
-  if (namesAnotherFormat(o.diff))
+  // -o x.bmp (it wrote PNG bytes to d.tga before); a pipe or /dev/stdout is written.
+  if (!o.diff.empty() && imageFormatOf(o.diff) != ".png")
     throw Error(ExitCode::Usage, "cannot write \"" + printableName(o.diff) + "\": --diff writes a PNG (name it .png)");
   out.input(o.a);
   out.input(o.b);
@@ -99,10 +85,11 @@ int runCompare(const CompareOptions& o) {
 
 Command addCompareCommand(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
-  CLI::App* c = app.add_subcommand("compare",
-                                   "Compare two images pixel by pixel. Exit 0: PASS (identical or within the thresholds), "
-                                   "1: FAILURE (over the thresholds, or sizes differ), 2: bad command line, "
-                                   "4: an image cannot be read");
+  CLI::App* c =
+      app.add_subcommand("compare",
+                         "Compare two images pixel by pixel. Exit 0: PASS (identical or within the thresholds), "
+                         "1: FAILURE (over the thresholds, or sizes differ), 2: bad command line, "
+                         "4: an image cannot be read");
   c->add_option("a", o->a, "First image")->required();
   c->add_option("b", o->b, "Second image")->required();
   c->add_option("--diff", o->diff, "Write |A-B| x scale as a PNG");

@@ -951,8 +951,7 @@ class Loader {
       // length 0 (Mesh::Degenerate) and refuses a mesh left with none ("No triangles in
       // triangle mesh"): such a mesh's export would not parse.
       const auto flat = [](const Vec3& p1, const Vec3& p2, const Vec3& p3) {
-        const Vec3 n = cross(p1 - p2, p3 - p2);
-        return std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z) == 0.0;
+        return length(cross(p1 - p2, p3 - p2)) == 0.0;
       };
       const bool none = std::all_of(mesh->triangles.begin(), mesh->triangles.end(),
                                     [&](const TriangleDesc& t) { return flat(t.p1, t.p2, t.p3); }) &&
