@@ -50,7 +50,8 @@ int runCompare(const CompareOptions& o) {
     return int(CompareExit::FileError);
   }
   if (r.sizeMismatch) {
-    fmt::print("FAILURE: the images differ in size\n");
+    fmt::print("FAILURE: the images differ in size: \"{}\" is {} x {}, \"{}\" {} x {}\n", o.a, r.width, r.height,
+               o.b, r.otherWidth, r.otherHeight);
     return int(CompareExit::Failure);
   }
   static const char* channel[] = {"R", "G", "B"};

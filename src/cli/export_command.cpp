@@ -62,18 +62,24 @@ Command addExportCommand(CLI::App& app) {
                  "The header's command line samples as pvrt's --spp n*n: +A0.0 +AM1 +Rn -J (default: -A, --spp 1)")
       ->check(CLI::Range(1, 9));
   c->add_flag("--strict", o->strict, "Treat anything that cannot be exported as an error");
-  c->add_flag("--povray-command", o->printCommand,
-              "Print the POV-Ray command line that renders the export (in its folder) as `pvrt render` would with "
-              "these options:");
+  CLI::Option* printCommand =
+      c->add_flag("--povray-command", o->printCommand,
+                  "Print the POV-Ray command line that renders the export (in its folder) as `pvrt render` would "
+                  "with these options (which only it takes; the file's own header follows --aa-depth):");
+  // Without --povray-command these would change nothing, the header saying -A or --aa-depth's
+  // +Rn whatever they ask: refused rather than ignored.
   c->add_option("-W,--width", o->width, "Image width (default: the scene's <image>, else 320)")
-      ->check(CLI::Range(1, 65536));
+      ->check(CLI::Range(1, 65536))
+      ->needs(printCommand);
   c->add_option("-H,--height", o->height, "Image height (default: the scene's <image>, else 240)")
-      ->check(CLI::Range(1, 65536));
+      ->check(CLI::Range(1, 65536))
+      ->needs(printCommand);
   c->add_option("--spp", o->spp, "Samples per pixel of the pov sampler, n*n for POV-Ray's +Rn (1: -A)")
-      ->check(CLI::Range(1, 1 << 16));
-  c->add_option("--aa-threshold", o->adaptive.threshold, "POV-Ray's +A t");
-  c->add_option("--aa-method", o->adaptive.method, "POV-Ray's +AM");
-  c->add_option("--aa-block", o->adaptive.blockSize, "POV-Ray's +BS");
+      ->check(CLI::Range(1, 1 << 16))
+      ->needs(printCommand);
+  c->add_option("--aa-threshold", o->adaptive.threshold, "POV-Ray's +A t")->needs(printCommand);
+  c->add_option("--aa-method", o->adaptive.method, "POV-Ray's +AM")->needs(printCommand);
+  c->add_option("--aa-block", o->adaptive.blockSize, "POV-Ray's +BS")->needs(printCommand);
   return [o] { return runExport(*o); };
 }
 

@@ -310,6 +310,17 @@ Prepared prepare(const RenderOptions& o, bool writes) {
   s.sampler.seed = o.seed;
   s.sampler.adaptive = o.adaptive;
   PixelSampler check(s.sampler);  // validates spp and the antialiasing before any work
+  // POV-Ray's +A t (or +AM2) alone samples up to +R3; pvrt's --spp defaults to 1, where the
+  // threshold and the method change nothing (-A). Say so rather than render without them.
+  if (writes && !o.hasTimeBudget && s.sampler.samplesPerPixel == 1 &&
+      (o.adaptive.threshold > 0 || o.adaptive.method == 2)) {
+    const std::string given = o.adaptive.threshold > 0 ? fmt::format("--aa-threshold {}", o.adaptive.threshold)
+                                                       : std::string("--aa-method 2");
+    std::fprintf(stderr,
+                 "pvrt: warning: %s does nothing at --spp 1 (one ray a pixel, POV-Ray's -A); POV-Ray's +A "
+                 "alone supersamples with +R3, which is --spp 9\n",
+                 given.c_str());
+  }
   if (check.adaptive() && !o.loadMap.empty())
     throw Error(ExitCode::Usage,
                 "--load-map is not available with --aa-threshold, --aa-method 2 or --pov-blocks (a pixel's rays "

@@ -126,7 +126,9 @@ void judge(Outcome& o) {
   const CompareResult& r = o.stats;
   const CompareThresholds& t = o.tolerance.limits;
   o.passed = r.pass(t);
-  if (r.sizeMismatch) o.message = "the images differ in size";
+  if (r.sizeMismatch)
+    o.message = fmt::format("the images differ in size: {} is {} x {}, the reference {} x {}", o.image, r.width,
+                            r.height, r.otherWidth, r.otherHeight);
   else if (o.passed && r.over0 == 0) o.message = "identical";
   else
     o.message = fmt::format("{}: max {} levels (limit {}), {} of {} channels over 1 level (limit {:.4f}%), {} off by 1"

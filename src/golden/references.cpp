@@ -93,6 +93,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
   WorkDir work;
   const std::string version = povrayVersion(o.povray, work.path);
   std::vector<ManifestEntry> entries;
+  std::vector<std::string> recorded;  // each entry's hash in the manifest (empty for a new one)
   std::vector<Job> jobs;
   for (const std::string& scene : scenes) {
     if (!fs::exists(suite.scenePath(scene)))
@@ -107,6 +108,7 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
       if (aa.empty()) aa = e.blessed() ? kDefaultAntialiasing : povrayAntialiasing(e.command);
       e.command = fmt::format("povray +I{}.pov +O{} +W{} +H{} -D +FN {}", e.scene, e.imageName(), e.width, e.height, aa);
       e.aaDepth = aaDepthOf(aa);
+      recorded.push_back(e.sdlSha256);
       e.sdlSha256 = sha256Hex(pov.sdl);
       e.renderer = version;
       std::vector<std::string> argv;
@@ -129,6 +131,13 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
       ++failures;
       continue;
     }
+    if (o.verify && recorded[i] != e.sdlSha256) {  // POV-Ray rendered another scene than the reference's
+      fmt::print("{}: reference is stale: the scene's export no longer hashes to the manifest's {}, so POV-Ray "
+                 "cannot reproduce it; remake it (`pvrt golden make`) or bless it\n",
+                 e.name(), recorded[i].substr(0, 12));
+      ++failures;
+      continue;
+    }
     if (o.verify) {  // the pixels, not the bytes: POV-Ray stamps the date in its PNGs
       const CompareResult r = compareFiles(made, stored);
       const bool same = !r.sizeMismatch && r.over0 == 0;
@@ -146,9 +155,10 @@ int makeReferences(Suite& suite, const MakeOptions& o) {
     out.output(suite.manifestPath(), "manifest");
     out.stageBytes(suite.manifestPath(), formatManifest(suite.manifest));
     out.commit();
-    fmt::print("wrote {} references and {}\n", entries.size(), suite.manifestPath());
+    fmt::print("wrote {} reference{} and {}\n", entries.size(), entries.size() == 1 ? "" : "s", suite.manifestPath());
   } else if (!o.verify) {
-    fmt::print("{} of {} references failed: nothing stored\n", failures, entries.size());
+    fmt::print("{} of {} reference{} failed: nothing stored\n", failures, entries.size(),
+               entries.size() == 1 ? "" : "s");
   }
   return failures;
 }

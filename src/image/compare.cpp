@@ -47,6 +47,8 @@ CompareResult compareFiles(const std::string& a, const std::string& b) {
     r.sizeMismatch = true;
     r.width = wa;
     r.height = ha;
+    r.otherWidth = wb;
+    r.otherHeight = hb;
     return r;
   }
   return compareImages8(pa, pb, wa, ha);

@@ -27,6 +27,7 @@ struct CompareResult {
   long channels = 0;
   long over0 = 0, over1 = 0, over2 = 0;  // channels differing by more than 0, 1, 2 levels
   bool sizeMismatch = false;
+  int otherWidth = 0, otherHeight = 0;  // the second image's size, when sizeMismatch
   bool pass(const CompareThresholds& t = {}) const {
     return !sizeMismatch && maxError <= t.maxLevels && double(over1) <= t.maxFractionOver1 * double(channels) &&
            (t.maxOffBy1 < 0 || over0 - over1 <= t.maxOffBy1);

@@ -195,6 +195,18 @@ add_test(NAME e2e.time_budget_pov
   COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/time_budget_pov.png -W 32 -H 20 --time-budget 0.2 --sampler pov)
 set_tests_properties(e2e.time_budget_pov PROPERTIES LABELS e2e
   PASS_REGULAR_EXPRESSION "chose --spp (1|4|9|16|25|36|49|64|81|100|121|144|169|196|225|256|[0-9]*(0|1|4|5|6|9)) --sampler pov \\(predicted")
+# Adaptive antialiasing at the default --spp 1 is -A: a warning says so (POV-Ray's +A0.3 alone is +R3).
+add_test(NAME e2e.warning.aa_threshold_at_spp_1
+  COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/aa_threshold_spp1.png -W 16 -H 10 --aa-threshold 0.3 --quiet)
+set_tests_properties(e2e.warning.aa_threshold_at_spp_1 PROPERTIES LABELS e2e
+  PASS_REGULAR_EXPRESSION "^pvrt: warning: --aa-threshold 0\\.3 does nothing at --spp 1 \\(one ray a pixel, POV-Ray's -A\\); POV-Ray's \\+A alone supersamples with \\+R3, which is --spp 9")
+add_test(NAME e2e.warning.aa_method_2_at_spp_1
+  COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/aa_method2_spp1.png -W 16 -H 10 --aa-method 2 --quiet)
+set_tests_properties(e2e.warning.aa_method_2_at_spp_1 PROPERTIES LABELS e2e
+  PASS_REGULAR_EXPRESSION "^pvrt: warning: --aa-method 2 does nothing at --spp 1")
+add_test(NAME e2e.warning.aa_threshold_none_at_spp_9
+  COMMAND pvrt render ${PVRT_PAPER1} -o ${PVRT_E2E_DIR}/aa_threshold_spp9.png -W 16 -H 10 --aa-threshold 0.3 --spp 9 --quiet)
+set_tests_properties(e2e.warning.aa_threshold_none_at_spp_9 PROPERTIES LABELS e2e FAIL_REGULAR_EXPRESSION "warning")
 pvrt_expect_error(time_budget_zero 2 "--time-budget must be a positive number of seconds, got 0"
   ARGS render ${PVRT_PAPER1} --time-budget 0)
 pvrt_expect_error(time_budget_negative 2 "--time-budget must be a positive number of seconds, got -1"
@@ -251,6 +263,10 @@ pvrt_expect_error(compare_diff_dir_missing 4 "^pvrt: error: cannot write \".*/no
 # silently (a seed of -1 or 2^64 was 2^64 - 1, a NaN share failed every comparison, a diff
 # named .tga held PNG bytes, an infinite time budget ran to --spp 65536) or printed an error
 # without its `pvrt: error:` prefix (exit code 4) or 309 digits of a range.
+# The fifth (blind10): export-pov's render options were ignored without --povray-command, its
+# header then saying `--spp 1 ... -A` to a user who asked for --spp 9 --aa-threshold 0.3.
+pvrt_expect_error(export_spp_without_povray_command 2 "^pvrt: error: --spp requires --povray-command"
+  ABSENT s.pov ARGS export-pov ${PVRT_PAPER1} -o <DIR>/s.pov --spp 9 --aa-threshold 0.3)
 pvrt_expect_error(export_dir_missing 4 "^pvrt: error: cannot write \".*/nodir/s\\.pov\": no such directory"
   ABSENT nodir ARGS export-pov ${PVRT_PAPER1} -o <DIR>/nodir/s.pov)
 pvrt_expect_error(accuracy_reference_missing 3 "^pvrt: error: cannot read image \".*/nope\\.png\": "

@@ -71,6 +71,7 @@ make)  # the manifest says what made each reference, and POV-Ray makes the same 
   ;;
 variant)  # other antialiasing: read from the manifest, never assumed
   expect 0 "$pvrt" golden make "$dir" prim_sphere --variant fast --antialiasing "-A"
+  has "wrote 1 reference and" "$dir/out"
   has $'prim_sphere\tfast\t64\t40\t0\t' "$dir/reference/manifest.tsv"
   [ -f "$dir/reference/prim_sphere.fast.png" ] || fail "no prim_sphere.fast.png"
   expect 0 "$pvrt" golden run "$dir" --scene prim_sphere --backends serial --out "$out"
@@ -106,6 +107,10 @@ stale)  # a scene edited after its reference was made
   sed -i 's/0.9 0.25 0.2/0.2 0.9 0.25/' "$dir/prim_sphere.xml"
   expect 1 "$pvrt" golden run "$dir" --backends serial --out "$out"
   has "FAIL prim_sphere.aa.serial: reference is stale" "$dir/out"
+  expect 1 "$pvrt" golden make "$dir" --verify  # POV-Ray is not blamed for the edit
+  has "prim_sphere.aa: reference is stale: the scene's export no longer hashes" "$dir/out"
+  lacks "does NOT reproduce" "$dir/out"
+  has "light_shadowless.aa: POV-Ray reproduces the reference" "$dir/out"
   ;;
 tolerance)  # a looser threshold with its reason passes and is shown; one without a reason is an error
   break_sphere
@@ -152,6 +157,9 @@ external)  # another renderer's folder against the references
   has "FAIL background_ambient.aa.external: no image" "$dir/out"
   has "PASS light_shadowless.aa.external" "$dir/out"
   has 'tests="3" failures="2"' "$out/junit.xml"
+  "$pvrt" render "$dir/light_shadowless.xml" -o "$dir/other/light_shadowless.png" -W 32 -H 20 --quiet || fail "render"
+  expect 1 "$pvrt" golden compare "$dir" --images "$dir/other" --out "$out"
+  has "FAIL light_shadowless.aa.external: the images differ in size: .*/other/light_shadowless.png is 32 x 20, the reference 64 x 40" "$dir/out"
   ;;
 new)  # what the <prefix>.new CTest test runs: only what a configure-time list does not name
   printf 'prim_sphere.aa\nlight_shadowless.aa\n' >"$dir/known"

@@ -61,7 +61,8 @@ TEST(PovDisc, RingWorkedOutByHand) {
   EXPECT_FALSE(d.intersect({{2.5, 5, 0}, {0, -1, 0}}, 0, 1e7));   // beyond the rim
   EXPECT_FALSE(d.intersect({{1.5, 5, 0}, {1, 0, 0}}, 0, 1e7));    // parallel
   EXPECT_FALSE(d.intersect(down, 5.0, 1e7));                      // not beyond lo
-  EXPECT_TRUE(d.inside({0, -1, 0}));
+  EXPECT_TRUE(d.inside({0, -5e-4, 0}));  // behind it and within its box (below)
+  EXPECT_FALSE(d.inside({0, -1, 0}));    // behind it, beyond its box
   EXPECT_FALSE(d.inside({0, 1, 0}));
 }
 
@@ -139,6 +140,26 @@ TEST(PovDisc, OnAPlaneTheRoundingDecides) {
   }
   EXPECT_GT(nearer, 0);
   EXPECT_GT(notNearer, 0);
+}
+
+// TracePixel::InitRayContainerState starts a camera ray inside an object only when the camera
+// is inside the object's bounding box as well as its inside test. A disc's inside is the
+// half-space below it, but its box (Disc::Compute_BBox) is a slab SMALL_TOLERANCE (1e-3) above
+// and below it: a camera below a glass disc's plane and away from it is in no disc (a glass's
+// rim or bottom seen from a camera below or above them, blind10's glass of water).
+TEST(PovDisc, HoldsACameraOnlyWithinItsBoundingBox) {
+  const Primitive rim = primitiveOf(placeDisc({0, 1.8, 0}, {0, 1, 0}, 0.6, 0.56));
+  EXPECT_FALSE(rim.inside({0, 1.6, -4}));            // below its plane, far from its box
+  EXPECT_FALSE(rim.inside({0.1, 1.79, 0.2}));        // below its plane, beneath its box
+  EXPECT_TRUE(rim.inside({0.1, 1.8 - 5e-4, 0.2}));   // below its plane, within its box
+  EXPECT_FALSE(rim.inside({0.1, 1.8 + 5e-4, 0.2}));  // within its box, above its plane
+  EXPECT_FALSE(rim.inside({0.7, 1.8 - 5e-4, 0}));    // beside its box
+  // A turned disc's box is the world box of its turned slab (Recompute_BBox): it holds
+  // points below the disc's plane that the slab itself does not.
+  const Primitive turned = primitiveOf(placeDisc({0, 0, 0}, {1, 1, 0}, 1, 0));
+  EXPECT_TRUE(turned.inside({-0.3, -0.3, 0}));
+  EXPECT_FALSE(turned.inside({-0.3, 0.35, 0}));      // above its plane
+  EXPECT_FALSE(turned.inside({-3, -3, 0}));
 }
 
 }  // namespace
