@@ -853,8 +853,13 @@ Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads, uint32_t leafSize) {
   stats_.nodes = nodes_.size();
   stats_.bytes = nodes_.size() * sizeof(BvhNode) + items_.size() * sizeof(PrimitiveRecord) +
                  others_.size() * sizeof(Primitive);
-  for (const Primitive& p : others_)
-    if (p.transform) stats_.bytes += sizeof(Transform);  // an upper bound: primitives may share one
+  // An upper bound: primitives may share one. A mesh's triangles share theirs, and lie
+  // mostly side by side here, so one is counted for each run of them.
+  const Transform* previous = nullptr;
+  for (const Primitive& p : others_) {
+    if (p.transform && p.transform.get() != previous) stats_.bytes += sizeof(Transform);
+    previous = p.transform.get();
+  }
   stats_.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -4,8 +4,7 @@
 // space: every transform moves its vertices at once and the triangle is set up again
 // (normal, plane distance, projection axis, and a vertex swap that keeps the projected
 // winding one way), so the rounding of each step stays in its vertices. A mesh's
-// triangles keep pvrt's watertight test instead (geometry/primitive.cpp): meshes must not
-// leak between neighbours, and POV-Ray's mesh test is another one anyway.
+// triangles stay in mesh space instead, as POV-Ray's do (geometry/pov_mesh.h).
 #pragma once
 
 #include <optional>

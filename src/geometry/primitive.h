@@ -15,6 +15,7 @@
 #include "geometry/bounds.h"
 #include "geometry/pov_cone.h"
 #include "geometry/pov_disc.h"
+#include "geometry/pov_mesh.h"
 #include "geometry/pov_triangle.h"
 #include "geometry/robust.h"
 
@@ -39,15 +40,13 @@ inline constexpr double kPovSphereReach2 = 1e10;
 struct SphereShape { Vec3 center; double radius; };
 struct PlaneShape { Vec3 normal; double distance; };  // unit normal; n.X = d
 struct BoxShape { Vec3 lo, hi; };
-// A mesh's triangles (watertight test); lone triangles are PovTriangleShape and
-// PovSmoothTriangleShape (geometry/pov_triangle.h).
-struct TriangleShape { Vec3 p1, p2, p3; Vec3 normal; };          // unit face normal
-struct SmoothTriangleShape { Vec3 p1, p2, p3; Vec3 n1, n2, n3; Vec3 normal; };
-
 // Cylinders, cones and discs are PovConeShape and PovDiscShape (geometry/pov_cone.h,
-// pov_disc.h): POV-Ray's canonical shapes, always with their transforms.
-using Shape = std::variant<SphereShape, PlaneShape, BoxShape, PovConeShape, PovDiscShape, TriangleShape,
-                           SmoothTriangleShape, PovTriangleShape, PovSmoothTriangleShape>;
+// pov_disc.h): POV-Ray's canonical shapes, always with their transforms. Lone triangles are
+// PovTriangleShape and PovSmoothTriangleShape (geometry/pov_triangle.h), in world space; a
+// mesh's are PovMeshTriangleShape and PovMeshSmoothTriangleShape (geometry/pov_mesh.h), in
+// mesh space, with the mesh's transform (when it has one) shared by all of them.
+using Shape = std::variant<SphereShape, PlaneShape, BoxShape, PovConeShape, PovDiscShape, PovTriangleShape,
+                           PovSmoothTriangleShape, PovMeshTriangleShape, PovMeshSmoothTriangleShape>;
 
 // The nearest hit of one primitive: its distance along the world ray and whatever the
 // shape needs later to compute its normal (face of a box, part of a cylinder, ...).
@@ -176,11 +175,5 @@ inline SurfacePoint planeHitPoint(const PlaneShape& s, const Vec3& p) {
 // (P - C) times 1 / r (Sphere::Normal: VInverseScaleEq), unit but for rounding, as
 // POV-Ray leaves it.
 inline Vec3 sphereNormal(const SphereShape& s, const Vec3& p) { return (p - s.center) * (1.0 / s.radius); }
-
-// Triangles with their face normal normalize((p1-p2) x (p3-p2)) precomputed; a zero-area
-// triangle gets a zero normal and is never hit.
-TriangleShape makeTriangle(const Vec3& p1, const Vec3& p2, const Vec3& p3);
-SmoothTriangleShape makeSmoothTriangle(const Vec3& p1, const Vec3& n1, const Vec3& p2,
-                                       const Vec3& n2, const Vec3& p3, const Vec3& n3);
 
 }  // namespace pvrt

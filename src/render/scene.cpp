@@ -9,7 +9,6 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/prefault.h"
-#include "core/single.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
@@ -70,9 +69,6 @@ double similarityScale(const Affine& a) {
     }
   return std::sqrt(s2);
 }
-
-// POV-Ray stores mesh data in single precision; so do we, to trace the same surface.
-Vec3 toFloat(const Vec3& v) { return single(v); }
 
 // Where PrimitiveBuilder puts an object's primitives: at the end of `grow`; without it, it
 // only counts them.
@@ -150,9 +146,26 @@ class PrimitiveBuilder {
     // strictly on one side of its face ("Degenerate triangle").
     if (!b.degenerate()) add(b.smooth(), false);
   }
+  // A mesh as POV-Ray's parser makes it (Parse_Mesh, geometry/pov_mesh.h): its triangles in
+  // mesh space, in the order the exporter writes them, and every transform written composed
+  // into one TRANSFORM that they share. A mesh with no transform written has none (an
+  // identity one written still carries each ray into mesh space and makes it unit again).
   void operator()(const MeshDesc& m) {
-    for (const auto& t : m.triangles) meshTriangle(t);
-    for (const auto& t : m.smoothTriangles) meshSmoothTriangle(t);
+    SharedTransform trans;
+    if (!steps_.steps.empty()) {
+      PovTransform composed = PovTransform::identity();
+      for (const TransformStep& step : steps_.steps) composed.then(povStep(step));
+      trans = share(composed.toTransform());
+    }
+    PovMeshBuilder mesh;
+    for (const auto& t : m.triangles)
+      if (add(mesh.triangle(t.p1, t.p2, t.p3), false)) primitive().transform = trans;
+    for (const auto& t : m.smoothTriangles) {
+      bool smooth = false;
+      PovMeshSmoothTriangleShape shape = mesh.smoothTriangle(t.p1, t.n1, t.p2, t.n2, t.p3, t.n3, smooth);
+      const bool made = smooth ? add(shape, false) : add(PovMeshTriangleShape(shape), false);
+      if (made) primitive().transform = trans;
+    }
   }
 
  private:
@@ -184,30 +197,6 @@ class PrimitiveBuilder {
         }
       }
     }
-  }
-  // A mesh's vertex: single precision as POV-Ray stores it, then the object's transform.
-  Vec3 point(const Vec3& p) const {
-    const Vec3 q = toFloat(p);
-    return identity_ ? q : xf_.applyPoint(q);
-  }
-  // A mesh's vertex normal: unit in object space, then carried by the inverse transpose and
-  // NOT renormalised, so that interpolating and then normalising equals POV-Ray's
-  // interpolate-in-object-space-then-transform under non-uniform scales and shears.
-  Vec3 normal(const Vec3& n) const {
-    const Vec3 q = unitDirection(toFloat(rescaled(n)));
-    return identity_ ? q : xf_.inverse()->applyTransposed(q);
-  }
-  void meshTriangle(const TriangleDesc& t) { add(makeTriangle(point(t.p1), point(t.p2), point(t.p3)), false); }
-  void meshSmoothTriangle(const SmoothTriangleDesc& t) {
-    // POV-Ray's mesh parser makes a triangle whose vertex normals all agree a flat one
-    // (with the geometric normal, whatever the normals said). Unlike a lone one, a mesh's
-    // smooth triangle is kept whatever its normals.
-    const Vec3 a = normalize(toFloat(rescaled(t.n1))), b = normalize(toFloat(rescaled(t.n2))),
-               c = normalize(toFloat(rescaled(t.n3)));
-    if (a == b && b == c) return meshTriangle(TriangleDesc{t.p1, t.p2, t.p3, t.loc});
-    const Vec3 p1 = point(t.p1), p2 = point(t.p2), p3 = point(t.p3);
-    add(SmoothTriangleShape{p1, p2, p3, normal(t.n1), normal(t.n2), normal(t.n3), makeTriangle(p1, p2, p3).normal},
-        false);
   }
   // False when only counting.
   bool add(Shape shape, bool keepTransform) {

@@ -46,21 +46,31 @@ class SceneMaker : public test::RandomGeometry {
       Shape s;
       std::optional<PovConePlacement> placed;  // cylinders, cones and discs carry POV-Ray's transform
       std::optional<PovDiscPlacement> disc;
+      std::optional<PovTransform> mesh;
       switch (i % 7) {
         case 0: s = SphereShape{c, r}; break;
         case 1: s = BoxShape{c - Vec3(r), c + Vec3{r, 2 * r, r}}; break;
         case 2: placed = placeCylinder(c, c + direction() * (2 * r), r / 2, i % 2 == 0); break;
         case 3: placed = placeCone(c, r, c + direction() * (2 * r), r / 3, false); break;
         case 4: disc = placeDisc(c, direction(), r, r / 2); break;
-        case 5: s = makeTriangle(c, c + direction() * r, c + direction() * r); break;
-        default:
-          s = makeSmoothTriangle(c, direction(), c + direction() * r, direction(), c + direction() * r, direction());
+        case 5: {
+          const Vec3 b = c + direction() * r, d = c + direction() * r;
+          s = PovMeshBuilder().triangle(c, b, d);
+          break;
+        }
+        default: {  // a mesh's smooth triangle, in a turned mesh's own space
+          const Vec3 n1 = direction(), b = c + direction() * r, n2 = direction(), d = c + direction() * r;
+          bool smooth = false;
+          s = PovMeshBuilder().smoothTriangle(c, n1, b, n2, d, direction(), smooth);
+          mesh = PovTransform::rotation({10, 20, 30});
+        }
       }
       if (placed) s = placed->shape;
       if (disc) s = disc->shape;
       Primitive p = make(s, i);
       if (placed) p.transform = share(placed->transform.toTransform());
       if (disc) p.transform = share(disc->transform.toTransform());
+      if (mesh) p.transform = share(mesh->toTransform());
       p.material = n - i;
       if (i % 5 == 0) {  // a sphere at the origin, scaled, rotated and moved to c
         p.shape = SphereShape{{0, 0, 0}, r};

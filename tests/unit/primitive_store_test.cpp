@@ -26,7 +26,7 @@ TEST(PrimitiveStore, SpheresAndPlanesAreTheirRecordsAlone) {
       make(PlaneShape{{0, 1, 0}, -1}, 1),
       make(SphereShape{{4, 5, 6}, 2}, 2, scaled),  // transformed: kept whole
       make(BoxShape{{0, 0, 0}, {1, 2, 3}}, 3),
-      make(makeTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 4),
+      make(PovMeshBuilder().triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 4),
   };
   const std::vector<Primitive> original = prims;
   const PrimitiveStore store(std::move(prims));
