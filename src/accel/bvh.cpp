@@ -1,6 +1,8 @@
 // Iterative, front-to-back traversals of the BVH (built in bvh_build.cpp).
 #include "accel/bvh.h"
 
+#include "geometry/pov_bbox.h"
+
 #include <algorithm>
 #include <cmath>
 #include <new>
@@ -9,6 +11,7 @@
 #include "accel/slabs.h"
 #include "core/lanes.h"
 #include "core/prefault.h"
+#include "geometry/pov_bbox.h"
 #include "parallel/parallel_for.h"
 
 namespace pvrt {
@@ -307,15 +310,82 @@ std::vector<LightBuffer::Occluder> Bvh::occluders() const {
   return out;
 }
 
+void Bvh::setTieRule(TieRule rule) {
+  tieRule_ = rule;
+  tieExtent_ = 0;
+  if (!nodes_.empty())
+    for (int c = 0; c < nodes_[0].used; ++c) {
+      const Bounds b = nodes_[0].childBounds(c);
+      tieExtent_ = std::max({tieExtent_, std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
+                             std::fabs(b.hi.y), std::fabs(b.hi.z)});
+    }
+  if (!std::isfinite(tieExtent_)) tieExtent_ = 0;
+}
+
+// A key is a few float roundings (relative 2^-24 each) of (box corner - origin) / direction
+// along one axis, so its error is below 2^-22 times the corner's and the origin's size over
+// that direction component (the corners are within tieExtent_). The declaration rule looks
+// only at exact ties.
+Bvh::TieReach Bvh::tieReach(const Ray& ray) const {
+  if (tieRule_ != TieRule::BoxEntry) return {};
+  double least = 1.0;  // the smallest direction component that can give a key
+  for (double d : {ray.dir.x, ray.dir.y, ray.dir.z})
+    if (d != 0) least = std::min(least, std::fabs(d));
+  return {1e-6 / std::max(least, 1e-3),
+          std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) + tieExtent_};
+}
+
+bool Bvh::replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept, const Ray& ray) const {
+  const uint32_t a = items_[found].object, b = items_[kept].object;
+  switch (tieRule_) {
+    case TieRule::FirstFound: return tFound < tKept;
+    case TieRule::Declaration: return tFound < tKept || (tFound == tKept && a < b && a != b);
+    case TieRule::BoxEntry: break;
+  }
+  if (a == b) return tFound < tKept;
+  // Near a tie: POV-Ray pops the two objects' boxes in order of their keys (a box's entry
+  // depth in floats; an unbounded object first), tests the first, and tests the second only
+  // if its key is not beyond the first one's depth, keeping it only if strictly nearer.
+  // Worked out only here, so the boxes are made again from the primitives.
+  auto keyOf = [this, &ray](uint32_t i) -> std::optional<double> {
+    const PrimitiveRecord& it = items_[i];
+    switch (it.kind) {
+      case PrimitiveRecord::Kind::Sphere: {
+        const double r = it.sphere.radius;
+        const Vec3& c = it.sphere.center;
+        return povBBoxKey(makePovBBox(c.x - r, c.y - r, c.z - r, 2.0 * r, 2.0 * r, 2.0 * r), ray);
+      }
+      case PrimitiveRecord::Kind::Plane: return -INFINITY;
+      case PrimitiveRecord::Kind::Other: break;
+    }
+    if (others_[it.other].bounds().empty()) return -INFINITY;
+    const std::optional<PovBBox> box = povBBoxOf(others_[it.other]);
+    if (!box) return std::nullopt;
+    return povBBoxKey(*box, ray);
+  };
+  const std::optional<double> mine = keyOf(found), theirs = keyOf(kept);
+  if (!mine || !theirs) return tFound < tKept;  // a box pvrt does not know: the nearer hit
+  if (*mine < *theirs) return !(*theirs <= tFound && tKept < tFound);  // found's box first
+  return *mine <= tKept && tFound < tKept;  // kept's box first (or equal keys: the one found first)
+}
+
 std::optional<ClosestHit> Bvh::closest(const Ray& ray, double tMin, double tMax, uint64_t& tests,
                                        bool skipNoShadow) const {
   std::optional<ClosestHit> best;
-  double bestT = tMax;
-  traverse(ray, tMin, bestT, [&](uint32_t i) {
+  // Shapes are asked for hits below `limit`: the best depth so far, or with a tie order the
+  // next double above it, so that a hit at exactly that depth is seen and the order decides.
+  double bestT = tMax, limit = tMax;
+  const bool ordered = tieRule_ != TieRule::FirstFound && !skipNoShadow;
+  const TieReach reach = ordered ? tieReach(ray) : TieReach{};
+  traverse(ray, tMin, limit, [&](uint32_t i) {
     if (skipNoShadow && items_[i].noShadow) return false;
     ++tests;
-    if (auto h = intersectItem(i, ray, tMin, bestT)) {
+    if (auto h = intersectItem(i, ray, tMin, limit)) {
+      if (best && !(ordered ? h->t < bestT - reach.at(bestT) || replacesHit(i, h->t, best->primitive, bestT, ray)
+                            : h->t < bestT))
+        return false;
       bestT = h->t;
+      limit = ordered ? std::max(nextUp(bestT), bestT + reach.at(bestT)) : bestT;
       best = ClosestHit{*h, i};
     }
     return false;
@@ -378,16 +448,25 @@ namespace {
 // arrays, not value-initialised: a query sets what it reads.
 struct LaneHits {
   alignas(32) double best[kMaxPacket];
+  // What each lane's shapes are asked for hits below (closest()'s `limit`): best, or with a
+  // tie order the next double above it once the lane has a hit.
+  alignas(32) double limit[kMaxPacket];
   double u[kMaxPacket], v[kMaxPacket];
   int part[kMaxPacket];
   uint32_t owner[kMaxPacket];
+  const Bvh& bvh;
+  const bool ordered;  // the tree has a tie rule
+  Bvh::TieReach reach[kMaxPacket];  // each live lane's, when ordered
 
   // A lane out of `live` (padding included) starts at -infinity, which no hit is nearer than.
-  LaneHits(const PacketRays& lanes, uint64_t live, double tMax) {
+  LaneHits(const PacketRays& lanes, uint64_t live, double tMax, const Bvh& tree)
+      : bvh(tree), ordered(tree.tieRule() != TieRule::FirstFound) {
     for (int k = 0; k < lanes.groups * 4; ++k) {
-      best[k] = (live >> k & 1u) ? tMax : -INFINITY;
+      best[k] = limit[k] = (live >> k & 1u) ? tMax : -INFINITY;
       owner[k] = kNone;
     }
+    if (ordered)
+      for (uint64_t m = live; m != 0; m &= m - 1) reach[__builtin_ctzll(m)] = bvh.tieReach(lanes.ray(__builtin_ctzll(m)));
   }
   // Tests the rays of `among` against primitive i (record p), four at a time for a sphere
   // or a plane; another shape one ray at a time, by other(i, ray, tMin, tMax).
@@ -398,7 +477,7 @@ struct LaneHits {
     if (p.kind == PrimitiveRecord::Kind::Other) {
       for (uint64_t m = among; m != 0; m &= m - 1) {
         const int k = __builtin_ctzll(m);
-        if (const auto h = other(i, lanes.ray(k), tMin, best[k])) note(k, h->t, h->part, h->u, h->v, i);
+        if (const auto h = other(i, lanes.ray(k), tMin, limit[k])) note(k, h->t, h->part, h->u, h->v, i, lanes);
       }
       return;
     }
@@ -407,17 +486,24 @@ struct LaneHits {
       const unsigned in = unsigned(among >> (4 * g)) & 0xFu;
       if (in == 0) continue;
       unsigned hit = (p.kind == PrimitiveRecord::Kind::Sphere
-                          ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)
-                          : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, best + 4 * g, t)) &
+                          ? intersectWorldSphere4(p.sphere, p.unit, lanes, 4 * g, tMin, limit + 4 * g, t)
+                          : hitPlane4(p.plane, p.unit, lanes, 4 * g, tMin, limit + 4 * g, t)) &
                      in;
       for (; hit != 0; hit &= hit - 1) {
         const int c = __builtin_ctz(hit);
-        note(4 * g + c, t[c], 0, 0, 0, i);
+        note(4 * g + c, t[c], 0, 0, 0, i, lanes);
       }
     }
   }
-  void note(int k, double t, int hitPart, double hitU, double hitV, uint32_t i) {
+  // A hit below the lane's limit: kept when nearer than its best, or at the best's depth when
+  // the tie order gives it to this object.
+  void note(int k, double t, int hitPart, double hitU, double hitV, uint32_t i, const PacketRays& lanes) {
+    if (owner[k] != kNone &&
+        !(ordered ? t < best[k] - reach[k].at(best[k]) || bvh.replacesHit(i, t, owner[k], best[k], lanes.ray(k))
+                  : t < best[k]))
+      return;
     best[k] = t;
+    limit[k] = ordered ? std::max(nextUp(t), t + reach[k].at(t)) : t;
     part[k] = hitPart;
     u[k] = hitU;
     v[k] = hitV;
@@ -440,8 +526,8 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
   PacketRays lanes;
   lanes.set(rays, count);
   const uint64_t all = count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1;
-  LaneHits hits(lanes, all, tMax);
-  const double* best = hits.best;
+  LaneHits hits(lanes, all, tMax, *this);
+  const double* best = hits.limit;  // what the walk prunes by
   auto other = [this](uint32_t i, const Ray& ray, double lo, double hi) { return intersectItem(i, ray, lo, hi); };
   LazySlabs slabs(lanes);
   // Unit directions from a common origin: the ray parameter t is the cone's s.
@@ -474,8 +560,8 @@ void Bvh::closestPacket(const Ray* rays, int count, double tMin, double tMax, st
 
 void Bvh::closestSpread(const PacketRays& lanes, uint64_t live, double tMin, double tMax,
                         std::optional<ClosestHit>* out, uint64_t& tests) const {
-  LaneHits hits(lanes, live, tMax);
-  const double* best = hits.best;
+  LaneHits hits(lanes, live, tMax, *this);
+  const double* best = hits.limit;  // what the walk prunes by
   auto other = [this](uint32_t i, const Ray& ray, double lo, double hi) { return intersectItem(i, ray, lo, hi); };
   // The unbounded primitives first, as in traverse().
   for (uint32_t i = boundedCount_; i < items_.size(); ++i)

@@ -13,6 +13,7 @@
 #include "accel/light_buffer.h"
 #include "accel/packet.h"
 #include "accel/packet_rays.h"
+#include "accel/tie_order.h"
 #include "geometry/primitive.h"
 #include "geometry/primitive_store.h"
 
@@ -103,6 +104,22 @@ class Bvh {
   // Gives the primitives back (in the tree's order), leaving this empty: to build again.
   PrimitiveStore release() &&;
   const std::vector<BvhNode>& nodes() const { return nodes_; }
+  // How the closest-hit queries (closest, closestPacket, closestSpread) decide between two
+  // objects met at exactly one depth, as POV-Ray does (accel/tie_order.h); by default the
+  // hit found first is kept. The see-through walks of shadows keep the first found.
+  void setTieRule(TieRule rule);
+  TieRule tieRule() const { return tieRule_; }
+  // How far from a hit at depth t the tie rule may still prefer another object's hit, for
+  // one ray: at(t). Beyond it the nearer hit wins in both renderers. Made once per ray.
+  struct TieReach {
+    double scale = 0, base = 0;
+    double at(double t) const { return scale * (t + base); }
+  };
+  TieReach tieReach(const Ray& ray) const;
+  // Whether a hit on primitive `found` at depth tFound replaces the kept hit on primitive
+  // `kept` at tKept, for hits within reach of each other (TieReach): at one depth, or where
+  // POV-Ray's tree would test them in the other order or stop before the nearer one.
+  bool replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept, const Ray& ray) const;
 
   // What shading needs of primitive i (0 <= i < size()), read from its compact record where
   // that has it, so that a hit on one of a million spheres fetches 48 bytes: the same
@@ -287,6 +304,8 @@ class Bvh {
   uint32_t boundedCount_ = 0;
   std::vector<BvhNode> nodes_;
   BvhStats stats_;
+  TieRule tieRule_ = TieRule::FirstFound;
+  double tieExtent_ = 0;  // the largest coordinate of the bounded primitives' boxes (for tieReach)
 };
 
 }  // namespace pvrt

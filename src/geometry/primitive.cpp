@@ -9,6 +9,8 @@
 #include <cstring>
 #include <utility>
 
+#include "geometry/pov_bbox.h"
+
 namespace pvrt {
 
 namespace {
@@ -316,36 +318,6 @@ Bounds Primitive::bounds() const {
   return world;
 }
 
-namespace {
-
-// Disc::Compute_BBox: the canonical square, SMALL_TOLERANCE (1e-3) above and below z = 0
-// (Make_BBox keeps floats), carried to world space by Recompute_BBox (its 8 corners, the
-// least and greatest of each coordinate, kept as float corner and float lengths); and
-// Inside_BBox's test of a point against it.
-bool povDiscBoxHolds(const PovDiscShape& d, const Affine& toWorld, const Vec3& p) {
-  constexpr double kSmallTolerance = 0.001;
-  const double rad = std::sqrt(d.outer2);
-  const Vec3 lo{double(float(-rad)), double(float(-rad)), double(float(-kSmallTolerance))};
-  const Vec3 len{double(float(2.0 * rad)), double(float(2.0 * rad)), double(float(2.0 * kSmallTolerance))};
-  constexpr double kBoundHuge = 2e10;
-  Vec3 mins(kBoundHuge), maxs(-kBoundHuge);
-  for (int i = 1; i <= 8; ++i) {
-    const Vec3 corner{lo.x + ((i & 1) ? len.x : 0.0), lo.y + ((i & 2) ? len.y : 0.0),
-                      lo.z + ((i & 4) ? len.z : 0.0)};
-    const Vec3 w = toWorld.applyPoint(corner);
-    mins = vmin(mins, w);
-    maxs = vmax(maxs, w);
-  }
-  for (int i = 0; i < 3; ++i) {
-    const double least = std::max(mins[i], -kBoundHuge / 2), most = std::min(maxs[i], kBoundHuge / 2);
-    const double low = double(float(least)), length = double(float(most - least));
-    if (p[i] < low || p[i] > low + length) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
 bool Primitive::inside(const Vec3& p) const {
   const Vec3 local = transform ? transform->toObject.applyPoint(p) : p;
   if (!std::visit(Inside{local}, shape)) return false;
@@ -353,8 +325,8 @@ bool Primitive::inside(const Vec3& p) const {
   // its bounding box (Inside_BBox). Every other shape's inside lies within its box (but for
   // rounding at its surface); a disc's is the half-space below it, and its box a slab 2e-3 thick: a camera farther
   // from the disc's plane is inside no disc.
-  if (const auto* disc = std::get_if<PovDiscShape>(&shape); disc && transform)
-    return povDiscBoxHolds(*disc, transform->toWorld, p);
+  if (std::holds_alternative<PovDiscShape>(shape))
+    if (const std::optional<PovBBox> box = povBBoxOf(*this)) return povBBoxHolds(*box, p);
   return true;
 }
 

@@ -261,6 +261,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   for (const LightDesc& l : desc.lights) s.lights.push_back(buildLight(l));
 
   const std::vector<ObjectDesc>& objects = desc.objects;
+  const size_t objectCount = objects.size();  // before `release` takes them (the tie rule counts them)
   const int threads = threadBudget();
   s.materials.addObjects(objects, threads);
   interrupt::check();
@@ -336,6 +337,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
     s.bvh = Bvh(std::move(s.bvh).release(), 0, leaf);
     interrupt::check();
   }
+  s.bvh.setTieRule(povTieRule(objectCount + desc.lights.size()));
   buildLightBuffers(s, options.memoryLimit, !options.memoryLimitGiven);
   interrupt::check();
   s.vista = Vista(s.camera, s.bvh);

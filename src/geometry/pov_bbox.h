@@ -1,0 +1,42 @@
+// POV-Ray 3.7's bounding box of an object (frame.h's BBOX: a float corner and float
+// lengths), as each shape's Compute_BBox makes it, and the key its bounding tree sorts a
+// ray's boxes by (bbox.cpp, Check_And_Enqueue): the depth, in float arithmetic, where the
+// ray enters the box. Two bounded objects that a ray meets at exactly one depth are
+// decided by these keys in POV-Ray (docs/fidelity.md, "Bounded objects tying").
+#pragma once
+
+#include <optional>
+
+#include "core/ray.h"
+#include "core/transform.h"
+
+namespace pvrt {
+
+struct Primitive;
+
+struct PovBBox {
+  float lowerLeft[3] = {0, 0, 0};
+  float lengths[3] = {0, 0, 0};
+};
+
+// Make_BBox: each value rounded to a float as it is passed.
+PovBBox makePovBBox(double llx, double lly, double llz, double lex, double ley, double lez);
+// Make_BBox_from_min_max with double corners: the lengths are differences of doubles.
+PovBBox povBBoxFromMinMax(const Vec3& mins, const Vec3& maxs);
+// Recompute_BBox: the eight corners through `toWorld` (MTransPoint's order of terms),
+// their range clipped at BOUND_HUGE / 2, made a box again.
+PovBBox povRecomputed(const PovBBox& box, const Affine& toWorld);
+
+// The box POV-Ray keeps for the object whose only primitive is `p`, where pvrt holds that
+// primitive in POV-Ray's own form: untransformed spheres, boxes, discs, cylinders, cones and
+// lone triangles. None for planes (unbounded) and for the shapes pvrt holds otherwise.
+std::optional<PovBBox> povBBoxOf(const Primitive& p);
+
+// Inside_BBox: whether point p lies in the box (its far corner summed in double).
+bool povBBoxHolds(const PovBBox& box, const Vec3& p);
+
+// Check_And_Enqueue's dmin for `ray`: the float depth where the ray enters the box (negative
+// when it starts inside), or +infinity where POV-Ray would not enqueue the box at all.
+double povBBoxKey(const PovBBox& box, const Ray& ray);
+
+}  // namespace pvrt

@@ -1,0 +1,116 @@
+// POV-Ray's object boxes and their keys (geometry/pov_bbox.h), and the rule they give to
+// ties between objects met at one depth (accel/tie_order.h, Bvh::replacesHit).
+#include "geometry/pov_bbox.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "accel/tie_order.h"
+#include "render/scene.h"
+#include "scene/xml_loader.h"
+
+namespace pvrt {
+namespace {
+
+TEST(PovBBox, KeyIsTheFloatDepthWhereTheRayEntersTheBox) {
+  // A box from y = 0 to 1 and a ray down the y axis from y = 3: the x and z slabs are not
+  // crossed (zero direction, origin inside them), the y slab is entered at 3 - 1 = 2.
+  const PovBBox box = makePovBBox(-1, 0, -1, 2, 1, 2);
+  EXPECT_EQ(povBBoxKey(box, Ray{{0.25, 3, 0.25}, {0, -1, 0}}), 2.0);
+  // A slanted ray: the key is computed from the float origin and the float 1 / direction,
+  // as Check_And_Enqueue does, so it is a float value, not the double entry depth.
+  const Ray slanted{{0.1, 3, -0.7}, Vec3{0.05, -1, 0.3} / length(Vec3{0.05, -1, 0.3})};
+  const float den = float(1.0 / slanted.dir.y);
+  const float expected = (0.0f + 1.0f - float(slanted.origin.y)) * den;  // the top face, ray going down
+  const double key = povBBoxKey(box, slanted);
+  EXPECT_EQ(key, double(float(key)));
+  EXPECT_EQ(key, double(expected));
+  EXPECT_NE(key, (1.0 - slanted.origin.y) / slanted.dir.y);
+}
+
+TEST(PovBBox, ABoxBehindOrBesideTheRayIsNotEnqueued) {
+  const PovBBox box = makePovBBox(-1, 0, -1, 2, 1, 2);
+  EXPECT_TRUE(std::isinf(povBBoxKey(box, Ray{{0, 3, 0}, {0, 1, 0}})));       // behind
+  EXPECT_TRUE(std::isinf(povBBoxKey(box, Ray{{5, 3, 0}, {0, -1, 0}})));      // beside, parallel to x
+  EXPECT_LT(povBBoxKey(box, Ray{{0, 0.5, 0}, {0, -1, 0}}), 0.0);             // from inside: negative
+}
+
+TEST(PovBBox, RecomputedBoxHoldsTheTurnedCorners) {
+  // Recompute_BBox: a unit cube turned 45 degrees about y spans +-sqrt(2)/2 in x and z.
+  const PovBBox cube = makePovBBox(-0.5, -0.5, -0.5, 1, 1, 1);
+  const PovBBox turned = povRecomputed(cube, Affine::rotate({0, 45, 0}));
+  EXPECT_NEAR(turned.lowerLeft[0], -std::sqrt(0.5), 1e-6);
+  EXPECT_NEAR(turned.lengths[0], 2 * std::sqrt(0.5), 1e-6);
+  EXPECT_NEAR(turned.lowerLeft[1], -0.5, 1e-7);
+  EXPECT_NEAR(turned.lengths[1], 1.0, 1e-7);
+}
+
+// A red box from y = 0 to 1 and a green disc lying on its top face, both seen straight down
+// at the disc's centre: the two meet the ray at exactly one depth.
+std::string boxAndDisc(bool discFirst, int lights) {
+  const std::string box = R"(<box corner1="-1 0 -1" corner2="1 1 1"><pigment color="1 0 0"/></box>)";
+  const std::string disc = R"(<disc center="0 1 0" normal="0 1 0" radius="0.6"><pigment color="0 1 0"/></disc>)";
+  std::string lightXml;
+  for (int i = 0; i < lights; ++i) lightXml += R"(<light_source location="3 6 -4"/>)";
+  return "<scene><camera location=\"0 3 -3\" look_at=\"0 1 0\"/>" + lightXml + (discFirst ? disc + box : box + disc) +
+         "</scene>";
+}
+
+uint32_t objectSeen(const Scene& scene, const Ray& ray) {
+  uint64_t tests = 0;
+  const auto hit = scene.bvh.closest(ray, 1e-4, 1e7, tests);
+  EXPECT_TRUE(hit.has_value());
+  return hit ? scene.bvh.object(hit->primitive) : ~0u;
+}
+
+TEST(TieOrder, ObjectsAndLightsFewerThanThreeTieInDeclarationOrder) {
+  const Ray down{{0.1, 3, 0.1}, {0, -1, 0}};
+  // Two objects and no light: POV-Ray walks them as declared, and the first one's hit stays.
+  const Scene boxFirst = buildScene(loadSceneString(boxAndDisc(false, 0), "tie.xml"));
+  EXPECT_EQ(boxFirst.bvh.tieRule(), TieRule::Declaration);
+  EXPECT_EQ(objectSeen(boxFirst, down), 0u);  // the box
+  const Scene discFirst = buildScene(loadSceneString(boxAndDisc(true, 0), "tie.xml"));
+  EXPECT_EQ(objectSeen(discFirst, down), 0u);  // the disc
+}
+
+TEST(TieOrder, FromThreeTheObjectWhoseBoxTheRayEntersFirstWins) {
+  // With a light the bounding tree decides: the disc's box is padded by SMALL_TOLERANCE above
+  // its plane, so the ray enters it first, whichever was declared first (POV-Ray 3.7.0.10
+  // shows the disc there: docs/fidelity.md).
+  const Ray down{{0.1, 3, 0.1}, {0, -1, 0}};
+  for (bool discFirst : {false, true}) {
+    const Scene scene = buildScene(loadSceneString(boxAndDisc(discFirst, 1), "tie.xml"));
+    EXPECT_EQ(scene.bvh.tieRule(), TieRule::BoxEntry);
+    EXPECT_EQ(objectSeen(scene, down), discFirst ? 0u : 1u) << "disc first: " << discFirst;
+  }
+}
+
+TEST(TieOrder, PacketsDecideTiesAsSingleRays) {
+  // Eight rays from one point, four of them onto the disc's tie with the box top, four past
+  // the disc onto the box top alone: closestPacket gives each what closest() gives it.
+  for (bool discFirst : {false, true})
+    for (int lights : {0, 1}) {
+      const Scene scene = buildScene(loadSceneString(boxAndDisc(discFirst, lights), "tie.xml"));
+      Ray rays[8];
+      const Vec3 from{0.05, 3, -0.02};
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 to{k < 4 ? 0.1 * k - 0.15 : 0.2 * k - 0.2, 1, k % 2 ? 0.1 : -0.2};
+        rays[k] = Ray{from, (to - from) / length(to - from)};
+      }
+      std::optional<ClosestHit> packet[8];
+      uint64_t tests = 0;
+      scene.bvh.closestPacket(rays, 8, 1e-4, 1e7, packet, tests);
+      for (int k = 0; k < 8; ++k) {
+        const auto single = scene.bvh.closest(rays[k], 1e-4, 1e7, tests);
+        ASSERT_EQ(single.has_value(), packet[k].has_value());
+        EXPECT_EQ(single->primitive, packet[k]->primitive) << "ray " << k << " lights " << lights;
+        EXPECT_EQ(single->hit.t, packet[k]->hit.t);
+      }
+    }
+}
+
+}  // namespace
+}  // namespace pvrt
