@@ -359,11 +359,7 @@ bool Bvh::replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept
   auto keyOf = [this, &ray](uint32_t i) -> std::optional<double> {
     const PrimitiveRecord& it = items_[i];
     switch (it.kind) {
-      case PrimitiveRecord::Kind::Sphere: {
-        const double r = it.sphere.radius;
-        const Vec3& c = it.sphere.center;
-        return povBBoxKey(makePovBBox(c.x - r, c.y - r, c.z - r, 2.0 * r, 2.0 * r, 2.0 * r), ray);
-      }
+      case PrimitiveRecord::Kind::Sphere: return povBBoxKey(povSphereBBox(it.sphere.center, it.sphere.radius), ray);
       case PrimitiveRecord::Kind::Plane: return -INFINITY;
       case PrimitiveRecord::Kind::Other: break;
     }

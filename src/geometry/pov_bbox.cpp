@@ -25,8 +25,7 @@ struct BoxOfShape {
   std::optional<PovBBox> operator()(const SphereShape& s) const {
     // Sphere::Compute_BBox; a transformed sphere is pvrt's own unit sphere, not POV-Ray's.
     if (p.transform) return std::nullopt;
-    const double r = s.radius;
-    return makePovBBox(s.center.x - r, s.center.y - r, s.center.z - r, 2.0 * r, 2.0 * r, 2.0 * r);
+    return povSphereBBox(s.center, s.radius);
   }
   std::optional<PovBBox> operator()(const BoxShape& b) const {
     // Box::Compute_BBox: Assign_BBox_Vect of bounds[0], VSub of the corners into floats.
@@ -72,6 +71,10 @@ PovBBox makePovBBox(double llx, double lly, double llz, double lex, double ley, 
   b.lowerLeft[0] = float(llx), b.lowerLeft[1] = float(lly), b.lowerLeft[2] = float(llz);
   b.lengths[0] = float(lex), b.lengths[1] = float(ley), b.lengths[2] = float(lez);
   return b;
+}
+
+PovBBox povSphereBBox(const Vec3& c, double r) {
+  return makePovBBox(c.x - r, c.y - r, c.z - r, 2.0 * r, 2.0 * r, 2.0 * r);
 }
 
 PovBBox povBBoxFromMinMax(const Vec3& mins, const Vec3& maxs) {

@@ -27,6 +27,9 @@ PovBBox povBBoxFromMinMax(const Vec3& mins, const Vec3& maxs);
 // their range clipped at BOUND_HUGE / 2, made a box again.
 PovBBox povRecomputed(const PovBBox& box, const Affine& toWorld);
 
+// Sphere::Compute_BBox of an untransformed sphere: the centre minus the radius, 2r.
+PovBBox povSphereBBox(const Vec3& center, double radius);
+
 // The box POV-Ray keeps for the object whose only primitive is `p`, where pvrt holds that
 // primitive in POV-Ray's own form: untransformed spheres, boxes, discs, cylinders, cones and
 // lone triangles. None for planes (unbounded) and for the shapes pvrt holds otherwise.
