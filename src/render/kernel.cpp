@@ -10,8 +10,8 @@ void fillKernels2(RectKernel* table);
 void fillKernels3(RectKernel* table);
 
 RectKernel kernelFor(EffectSet effects) {
-  static const std::array<RectKernel, 128> table = [] {
-    std::array<RectKernel, 128> t{};
+  static const std::array<RectKernel, kKernelEffects + 1> table = [] {
+    std::array<RectKernel, kKernelEffects + 1> t{};
     fillKernels0(t.data());
     fillKernels1(t.data());
     fillKernels2(t.data());

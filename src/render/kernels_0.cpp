@@ -1,4 +1,4 @@
-// Kernels for effect sets 0 to 31.
+// Kernels for effect sets 0 to 7.
 #include <utility>
 
 #include "render/kernel_impl.h"
@@ -6,7 +6,7 @@
 namespace pvrt {
 
 void fillKernels0(RectKernel* table) {
-  fillKernels<0>(table, std::make_integer_sequence<EffectSet, 32>{});
+  fillKernels<0>(table, std::make_integer_sequence<EffectSet, 8>{});
 }
 
 }  // namespace pvrt

@@ -1,4 +1,4 @@
-// Kernels for effect sets 32 to 63.
+// Kernels for effect sets 8 to 15.
 #include <utility>
 
 #include "render/kernel_impl.h"
@@ -6,7 +6,7 @@
 namespace pvrt {
 
 void fillKernels1(RectKernel* table) {
-  fillKernels<32>(table, std::make_integer_sequence<EffectSet, 32>{});
+  fillKernels<8>(table, std::make_integer_sequence<EffectSet, 8>{});
 }
 
 }  // namespace pvrt

@@ -1,4 +1,4 @@
-// Kernels for effect sets 64 to 95.
+// Kernels for effect sets 16 to 23.
 #include <utility>
 
 #include "render/kernel_impl.h"
@@ -6,7 +6,7 @@
 namespace pvrt {
 
 void fillKernels2(RectKernel* table) {
-  fillKernels<64>(table, std::make_integer_sequence<EffectSet, 32>{});
+  fillKernels<16>(table, std::make_integer_sequence<EffectSet, 8>{});
 }
 
 }  // namespace pvrt

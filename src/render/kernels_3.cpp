@@ -1,4 +1,4 @@
-// Kernels for effect sets 96 to 127.
+// Kernels for effect sets 24 to 31.
 #include <utility>
 
 #include "render/kernel_impl.h"
@@ -6,7 +6,7 @@
 namespace pvrt {
 
 void fillKernels3(RectKernel* table) {
-  fillKernels<96>(table, std::make_integer_sequence<EffectSet, 32>{});
+  fillKernels<24>(table, std::make_integer_sequence<EffectSet, 8>{});
 }
 
 }  // namespace pvrt

@@ -71,7 +71,9 @@ class Tracer {
         servesSquared_(squareBound(servesBound(scene.tol.shadow))),
         shadowSlabLimit_(shadowSlabLimit(scene.tol)),
         pointCellsFirst_(std::any_of(scene.lightBuffers.begin(), scene.lightBuffers.end(),
-                                     [](const LightBuffer& b) { return b.valid(); })) {}
+                                     [](const LightBuffer& b) { return b.valid(); })),
+        textures_((scene.effects & kTextures) != 0),
+        lightShaping_((scene.effects & kLightShaping) != 0) {}
 
   // A spawned ray's weight as POV-Ray passes it to TraceRay: a float (COLC), compared with
   // adc_bailout (a double) on entry. Rounded here, before the comparison, so that a weight
@@ -340,7 +342,7 @@ class Tracer {
     const FinishDesc& f = s.finish;
 
     FilterColor pig = m.color;
-    if constexpr ((E & kTextures) != 0) pig = scene_.materials.pigmentAt(m, p);
+    if (textures_) pig = scene_.materials.pigmentAt(m, p);
     const double alpha = 1.0 - pig.filter - pig.transmit;
 
     povcolour::FloatColour lit = povcolour::ambient(pig.rgb, f.ambient, scene_.globals.ambientLight, f.emission, alpha);
@@ -495,7 +497,7 @@ class Tracer {
   // one checker in world space: bit i of `second` is set where lane i gets the checker's
   // second colour. False, leaving pigments to pigmentAt, otherwise.
   bool fourChecker(const Material* const* m, int k0, unsigned& second) const {
-    if constexpr ((E & kTextures) == 0) return false;
+    if (!textures_) return false;
     using namespace lanes;
     for (int i = 0; i < 4; ++i)
       if (m[i]->checker < 0 || m[i]->checker != m[0]->checker) return false;
@@ -512,7 +514,8 @@ class Tracer {
   // lights' diffuse and highlight terms: no mirror, no brilliance or metallic tint, and no
   // spotlight, fading or area light in the scene. (Its pigment must also let nothing through.)
   bool plainSurface(const Surface& s) const {
-    if constexpr ((E & (kLightShaping | kAreaLights)) != 0) return false;
+    if constexpr ((E & kAreaLights) != 0) return false;
+    if (lightShaping_) return false;
     if constexpr ((E & kReflection) != 0) {
       if (s.reflective) return false;
     }
@@ -553,7 +556,7 @@ class Tracer {
     unsigned secondColour = 0;  // lanes on a checker's second colour, when fourChecker() found them
     const bool checkered = fourChecker(m, k0, secondColour);
     for (int i = 0; i < 4; ++i) {
-      if constexpr ((E & kTextures) != 0) {
+      if (textures_) {
         if (checkered) {
           if (secondColour >> i & 1u) pig[i] = scene_.materials.checker(*m[i]).color2;
         } else {
@@ -915,7 +918,7 @@ class Tracer {
       l = toLight * (1.0 / dist);  // POV-Ray's VInverseScaleEq: times the reciprocal
     }
     Color intensity = light.color;
-    if constexpr ((E & kLightShaping) != 0) {
+    if (lightShaping_) {
       const double a = light.attenuation(l, dist);
       if (a == 0) return {};
       intensity *= a;
@@ -1099,7 +1102,7 @@ class Tracer {
         const double t = found->hit.t;
         origin = origin + dir * t;
         FilterColor pig = m.color;
-        if constexpr ((E & kTextures) != 0) pig = scene_.materials.pigmentAt(m, origin);
+        if (textures_) pig = scene_.materials.pigmentAt(m, origin);
         if (std::fabs(pig.filter) + std::fabs(pig.transmit) < scene_.globals.adcBailout) return {};
         k *= pig.rgb * pig.filter + Color(pig.transmit);
         // Leaving a fading interior: the light crossed it for t (POV-Ray fades shadow rays
@@ -1245,6 +1248,10 @@ class Tracer {
   double servesSquared_;  // the largest squared offset whose length bufferServes lets through
   double shadowSlabLimit_;  // shadow segments start at the hit point below this slab (render/spawn.h)
   bool pointCellsFirst_;    // whether shadeAt finds its point's light-buffer cells first (any buffer)
+  // The effects the kernel is not compiled for (effects.h): branches that shading takes or
+  // not for the whole render, as cheap as a template argument and a quarter of the kernels.
+  bool textures_;           // patterned pigments: pigmentAt instead of the material's colour
+  bool lightShaping_;       // spotlights or fading lights: each light's attenuation
   static constexpr uint32_t kNoCache = ~0u;
   // tracePacket's working arrays, kept here so that no pixel pays for initialising them.
   std::optional<ClosestHit> hits_[kMaxPacket];
