@@ -134,6 +134,10 @@ class Bvh {
     return items_[i].kind == PrimitiveRecord::Kind::Plane ? &items_[i].plane : nullptr;
   }
   uint32_t object(uint32_t i) const { return items_[i].object; }
+  // Whether the object primitive i belongs to is hit in [tMin, tMax): primitive i alone, or
+  // every primitive of a mesh (POV-Ray's shadow cache tries its cached object so, and a mesh
+  // is one object there). `tests` counts the intersection tests.
+  bool objectHit(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests) const;
   std::optional<ShapeHit> intersect(uint32_t i, const Ray& ray, double tMin, double tMax) const {
     return intersectItem(i, ray, tMin, tMax);
   }
@@ -286,6 +290,8 @@ class Bvh {
                               PacketNearest* nearest) const;
   // Puts others_ in the order of the records that point to them (the build's last step).
   void followRecords(int threads);
+  // Sets sharesObject on the records of objects made of several primitives.
+  void markSharedObjects();
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 

@@ -850,6 +850,7 @@ Bvh::Bvh(PrimitiveStore primitives, unsigned buildThreads, uint32_t leafSize) {
   items_ = std::move(primitives.records);
   others_ = std::move(primitives.others);
   followRecords(threads);
+  markSharedObjects();
   stats_.nodes = nodes_.size();
   stats_.bytes = nodes_.size() * sizeof(BvhNode) + items_.size() * sizeof(PrimitiveRecord) +
                  others_.size() * sizeof(Primitive);
@@ -869,6 +870,17 @@ PrimitiveStore Bvh::release() && {
   store.others = std::move(others_);
   *this = Bvh();
   return store;
+}
+
+// Only shapes kept whole (Kind::Other) come several to an object: a mesh's triangles. So the
+// pass reads others_, which a scene of spheres has none of.
+void Bvh::markSharedObjects() {
+  uint32_t last = 0;
+  for (const Primitive& p : others_) last = std::max(last, p.object);
+  std::vector<uint8_t> count(others_.empty() ? 0 : size_t(last) + 1, 0);
+  for (const Primitive& p : others_) count[p.object] = uint8_t(std::min(count[p.object] + 1, 2));
+  for (PrimitiveRecord& r : items_)
+    r.sharesObject = r.kind == PrimitiveRecord::Kind::Other && count[r.object] > 1;
 }
 
 // The shapes of the Kind::Other records put in their records' order, for locality: a leaf's

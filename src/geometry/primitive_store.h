@@ -28,6 +28,9 @@ struct PrimitiveRecord {
   Kind kind = Kind::Other;
   bool noShadow = false;
   bool opaque = true;
+  // One of several primitives of its object (a mesh's triangles; set by the Bvh): POV-Ray's
+  // shadow cache holds an object, so a cached mesh is tested whole (Bvh::objectHit).
+  bool sharesObject = false;
   PrimitiveRecord() : sphere{} {}
 };
 static_assert(sizeof(PrimitiveRecord) == 48, "a record is what a big scene pays per sphere");

@@ -850,9 +850,8 @@ class Tracer {
       const uint32_t cached = levelOne != kNoCache ? levelOne : deeper;
       const bool blocked = Occlusion(pl.occlusion[k]) == Occlusion::Blocked;
       if (cached != kNoCache && !(blocked && blocker_[k] == cached)) {
-        ++stats_.intersectionTests;
-        if (scene_.bvh.intersect(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
-                                 scene_.tol.minDepth, pl.dist[k])) {
+        if (scene_.bvh.objectHit(cached, Ray{shadowOrigin(k), {pl.dirX[k], pl.dirY[k], pl.dirZ[k]}},
+                                 scene_.tol.minDepth, pl.dist[k], stats_.intersectionTests)) {
           pl.occlusion[k] = uint8_t(Occlusion::Blocked);
           continue;
         }
@@ -1030,9 +1029,9 @@ class Tracer {
     if (cached == kNoCache) return false;
     // TracePointLightShadowRay tries the cached object over [MIN_ISECT_DEPTH, depth),
     // not the full test's (SHADOW_TOLERANCE, depth - SHADOW_TOLERANCE): in a crease it
-    // still finds the wall that the full test passes over.
-    ++stats_.intersectionTests;
-    return scene_.bvh.intersect(cached, segment, scene_.tol.minDepth, dist).has_value();
+    // still finds the wall that the full test passes over; and a cached mesh is tried whole,
+    // so a smooth mesh's shadow ray can be stopped by the neighbouring triangle there.
+    return scene_.bvh.objectHit(cached, segment, scene_.tol.minDepth, dist, stats_.intersectionTests);
   }
 
   // What a segment that the cached object left open lets through, given the full test's

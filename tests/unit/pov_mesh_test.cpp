@@ -224,5 +224,40 @@ TEST(PovMesh, SharedDiagonalIsHitByBoth) {
   }
 }
 
+// POV-Ray's shadow cache holds an object, and a mesh is one: trying a cached mesh triangle
+// tries every triangle of its mesh (Bvh::objectHit), and nothing of another object.
+TEST(PovMesh, CachedTriangleStandsForItsWholeMesh) {
+  const Scene scene = buildScene(loadSceneString(sceneWith(
+      "<mesh><triangle p1=\"-1 0 -1\" p2=\"1 0 -1\" p3=\"1 0 1\"/>"
+      "<triangle p1=\"-1 0 -1\" p2=\"1 0 1\" p3=\"-1 0 1\"/></mesh>"
+      "<triangle p1=\"-1 0 -1\" p2=\"1 0 -1\" p3=\"1 0 1\"><translate v=\"0 -1 0\"/></triangle>"
+      "<sphere center=\"5 0 0\" radius=\"0.5\"/>")));
+  ASSERT_EQ(scene.bvh.size(), 4u);
+  // A ray down through the mesh's second triangle only (x < z), and the lone triangle below
+  // misses there too (it is the first triangle's shape).
+  const Ray down{{-0.5, 1, 0.5}, {0, -1, 0}};
+  int meshTriangles = 0;
+  for (uint32_t i = 0; i < 4; ++i) {
+    uint64_t tests = 0;
+    const bool alone = scene.bvh.intersect(i, down, 1e-4, 10).has_value();
+    const bool whole = scene.bvh.objectHit(i, down, 1e-4, 10, tests);
+    if (scene.bvh.object(i) == 0) {  // the mesh
+      ++meshTriangles;
+      EXPECT_TRUE(whole) << i;
+      if (!alone) EXPECT_GE(tests, 2u) << "the other triangle was tried";
+    } else {
+      EXPECT_EQ(whole, alone) << i;
+      EXPECT_FALSE(whole) << i;
+      EXPECT_EQ(tests, 1u) << i;
+    }
+  }
+  EXPECT_EQ(meshTriangles, 2);
+  // Beyond the range, the mesh is not hit.
+  for (uint32_t i = 0; i < 4; ++i) {
+    uint64_t tests = 0;
+    if (scene.bvh.object(i) == 0) EXPECT_FALSE(scene.bvh.objectHit(i, down, 1e-4, 0.5, tests));
+  }
+}
+
 }  // namespace
 }  // namespace pvrt
