@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "core/mapped_file.h"
 #include "core/interrupt.h"
+#include "scene/xml_attributes.h"
 
 namespace pvrt {
 
@@ -318,6 +319,43 @@ void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std
   parseCheckedText(doc, bytes, name);
 }
 
+// The first closing tag that does not close the innermost open element, said as "<a> is closed
+// by </b> on line N" (or "</b> on line N closes no element"); empty where there is none.
+// tinyxml2's MISMATCHED_ELEMENT names only the line of the open element, so a closing tag too
+// many deep in a file pointed at <scene> on line 1 with nothing else to go on (blind11).
+static std::string firstMismatchedClose(std::string_view s) {
+  constexpr size_t npos = std::string_view::npos;
+  auto nameAt = [&](size_t from) {
+    const size_t to = std::min(s.find_first_of(" \t\r\n/>", from), s.size());
+    return s.substr(from, to - from);
+  };
+  std::vector<std::string_view> open;  // the names of the elements open, innermost last
+  for (size_t i = s.find('<'); i < s.size(); i = s.find('<', i + 1)) {
+    if (s.compare(i, 4, "<!--") == 0) {
+      i = s.find("-->", i + 4);
+    } else if (s.compare(i, 9, "<![CDATA[") == 0) {
+      i = s.find("]]>", i + 9);
+    } else if (s.compare(i, 2, "<?") == 0) {
+      i = s.find("?>", i + 2);
+    } else if (s.compare(i, 2, "</") == 0) {
+      const std::string_view closing = nameAt(i + 2);
+      if (!open.empty() && open.back() == closing) {
+        open.pop_back();
+        continue;  // to the next '<' (the tag's own '>' holds none)
+      }
+      const std::string tag = "</" + printable(closing) + "> on line " + std::to_string(lineAt(s, i));
+      return open.empty() ? tag + " closes no element" : "<" + printable(open.back()) + "> is closed by " + tag;
+    } else if (s.compare(i, 2, "<!") != 0) {
+      size_t end = npos;
+      if (unseparatedAttribute(s, i + 1, end) != npos) return {};  // refused before parsing
+      if (end != npos && s[end - 1] != '/') open.push_back(nameAt(i + 1));
+      i = end;
+    }
+    if (i == npos) break;
+  }
+  return {};
+}
+
 void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
   if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) return;
   const int line = std::max(1, doc.ErrorLineNum());
@@ -339,9 +377,10 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
         hint = ": text after the <scene> element, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_COMMENT) hint = ": a comment not closed by '-->'";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_CDATA) hint = ": a CDATA section not closed by ']]>'";
-      else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT)
-        hint = ": an element not closed, or closed with another name";
-      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) {
+        const std::string which = firstMismatchedClose(bytes);
+        hint = ": " + (which.empty() ? "" : which + ": ") + "an element not closed, or closed with another name";
+      } else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
         hint = ": not XML, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_DECLARATION)
         hint = ": a <?...?> inside an element (scenes take none), or one not closed by '?>'";

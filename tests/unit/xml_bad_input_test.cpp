@@ -149,6 +149,22 @@ TEST(XmlBadInput, FilesCutShortSaySo) {
             "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_CDATA: a CDATA section not closed by ']]>')");
 }
 
+// tinyxml2 names the line of the element whose closing tag does not match: for a closing tag
+// too many, <scene> on line 1. The message also says which closing tag, and where.
+TEST(XmlBadInput, AMismatchedClosingTagIsNamedWithItsLine) {
+  auto message = [](int line, const std::string& which) {
+    return "t.xml:" + std::to_string(line) + ": error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: " + which +
+           ": an element not closed, or closed with another name)";
+  };
+  EXPECT_EQ(errorOf("<scene>\n<cylinder base=\"0 0 0\" cap=\"0 1 0\" radius=\"1\">\n</cylinder>\n</cylinder>\n"
+                    "</scene>"),
+            message(1, "<scene> is closed by </cylinder> on line 4"));
+  // Comments, CDATA, quoted '>' and empty elements do not count as tags.
+  EXPECT_EQ(errorOf("<scene>\n<!-- </x> --><![CDATA[</y>]]><sphere center=\"0 0 0\" radius=\"1\">"
+                    "<pigment color=\">\"/><finish>\n</sphere></finish></scene>"),
+            message(2, "<finish> is closed by </sphere> on line 3"));
+}
+
 // tinyxml2 reads any <?name ...?> as a declaration; only <?xml ...?>, first, is one.
 TEST(XmlBadInput, ProcessingInstructionsAreRefusedByName) {
   EXPECT_EQ(errorOf("<?xml version=\"1.0\"?>\n<?xml-stylesheet href=\"a.css\"?>\n<scene/>"),
