@@ -113,6 +113,29 @@ bool povBBoxHolds(const PovBBox& box, const Vec3& p) {
   return true;
 }
 
+bool povBBoxDirHits(const PovBBox& box, const Ray& ray) {
+  const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+  float tmin = 0, tmax = 0;
+  for (int a = 0; a < 3; ++a) {
+    // Make_min_max_from_BBox (a float sum), then the slab of the side the ray meets first.
+    const float origin = float(o[a]), invdir = float(1.0 / d[a]);
+    const float lo = box.lowerLeft[a], hi = box.lowerLeft[a] + box.lengths[a];
+    const bool back = invdir < 0.0f;  // the variant bit of Intersect_BBox
+    const float near = ((back ? hi : lo) - origin) * invdir, far = ((back ? lo : hi) - origin) * invdir;
+    if (a > 0) {
+      if (tmin > far || near > tmax) return false;
+      tmin = std::max(tmin, near);  // Intersect_BBox_Dir's "if (tymin > tmin) tmin = tymin"
+      tmax = std::min(tmax, far);
+    } else {
+      tmin = near, tmax = far;
+    }
+  }
+  // Find_Intersection's maxd, HUGE_VAL, and MIN_ISECT_DEPTH (geometry/primitive.h), as floats.
+  const float maxd = std::numeric_limits<float>::infinity(), mind = float(kMinIsectDepth);
+  return tmin < maxd && tmax > mind;
+}
+
 double povBBoxKey(const PovBBox& box, const Ray& ray) {
   // Rayinfo: the origin and the reciprocal direction as floats.
   const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};

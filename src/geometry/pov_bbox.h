@@ -38,6 +38,13 @@ std::optional<PovBBox> povBBoxOf(const Primitive& p);
 // Inside_BBox: whether point p lies in the box (its far corner summed in double).
 bool povBBoxHolds(const PovBBox& box, const Vec3& p);
 
+// ObjectBase::Intersect_BBox, which Trace::FindIntersection and Find_Intersection call before
+// they test an object (objects.cpp, Intersect_BBox_Dir): the box's corners, the ray's origin and
+// 1 / direction as floats, the slabs in float; true when the ray's span in the box starts
+// before HUGE_VAL and ends beyond MIN_ISECT_DEPTH. Far from the origin a float box can lie
+// inside its object, and a float origin beside the ray, so POV-Ray misses slivers there.
+bool povBBoxDirHits(const PovBBox& box, const Ray& ray);
+
 // Check_And_Enqueue's dmin for `ray`: the float depth where the ray enters the box (negative
 // when it starts inside), or +infinity where POV-Ray would not enqueue the box at all.
 double povBBoxKey(const PovBBox& box, const Ray& ray);

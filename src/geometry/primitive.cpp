@@ -248,14 +248,37 @@ const PovMeshTriangleShape* meshTriangle(const Shape& shape) {
   return std::get_if<PovMeshSmoothTriangleShape>(&shape);
 }
 
+std::optional<ShapeHit> intersectShape(const Primitive& p, const Ray& ray, double tMin, double tMax) {
+  if (const PovMeshTriangleShape* t = meshTriangle(p.shape))
+    return hitMeshTriangle(*t, p.transform.get(), ray, tMin, tMax, p.unit);
+  if (!p.transform) return std::visit(Intersector{ray, tMin, tMax, true, p.unit}, p.shape);
+  // An affine map keeps the ray parameter: the local hit at t is the world hit at t.
+  const Ray local{p.transform->toObject.applyPoint(ray.origin), p.transform->toObject.applyVector(ray.dir)};
+  return std::visit(Intersector{local, tMin, tMax, false, p.unit}, p.shape);
+}
+
+// Whether the ray's origin and the box lie within 1e6 of the origin. Beyond, a float is coarser
+// than a tenth of a unit and POV-Ray's float box test cuts whole pieces off objects: pvrt keeps
+// them there, as its tie rule keeps the nearer hit (accel/bvh.cpp, kTieFar; hard.translate_base).
+bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
+  constexpr double kFar = 1e6;
+  if (std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) >= kFar) return false;
+  for (int a = 0; a < 3; ++a)
+    if (std::fabs(box.lowerLeft[a]) >= kFar || std::fabs(box.lowerLeft[a] + box.lengths[a]) >= kFar) return false;
+  return true;
+}
+
 }  // namespace
 
 std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
-  if (const PovMeshTriangleShape* t = meshTriangle(shape)) return hitMeshTriangle(*t, transform.get(), ray, tMin, tMax, unit);
-  if (!transform) return std::visit(Intersector{ray, tMin, tMax, true, unit}, shape);
-  // An affine map keeps the ray parameter: the local hit at t is the world hit at t.
-  const Ray local{transform->toObject.applyPoint(ray.origin), transform->toObject.applyVector(ray.dir)};
-  return std::visit(Intersector{local, tMin, tMax, false, unit}, shape);
+  const std::optional<ShapeHit> hit = intersectShape(*this, ray, tMin, tMax);
+  // POV-Ray tests an object only when the ray meets its float bounding box, which far from
+  // the origin leaves slivers of it out (a cylinder 1e5 away: blind11). Testing the box after
+  // a hit gives the same answer, and makes the box only for the few rays that hit.
+  if (!hit) return hit;
+  const std::optional<PovBBox> box = povBBoxOf(*this);
+  if (box && withinFloatBoxReach(*box, ray) && !povBBoxDirHits(*box, ray)) return std::nullopt;
+  return hit;
 }
 
 SurfacePoint Primitive::surfacePoint(const Ray& ray, const ShapeHit& hit) const {

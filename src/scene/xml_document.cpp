@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "core/mapped_file.h"
 #include "core/interrupt.h"
+#include "scene/xml_attributes.h"
 
 namespace pvrt {
 
@@ -219,8 +220,47 @@ size_t firstBadCharacterReference(std::string_view s) {
   return std::string_view::npos;
 }
 
+static bool isXmlSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// In the start tag whose name begins at `from`: the offset of an attribute that follows the
+// closing quote of the one before it directly (<sphere center="0 0 0"radius="1"/>, which
+// tinyxml2 reads as two attributes though XML requires white space between them), else
+// npos. `end` gets the offset of the tag's '>' (npos where the file ends first).
+static size_t unseparatedAttribute(std::string_view s, size_t from, size_t& end) {
+  constexpr size_t npos = std::string_view::npos;
+  for (size_t j = from;;) {
+    // The next quote before the next '>' (memchr within the tag: the loader's bytes are mostly
+    // tags); a '>' inside a quoted value does not end the tag.
+    const size_t gt = s.find('>', j);
+    const std::string_view rest = s.substr(j, gt == npos ? npos : gt - j);
+    const size_t q = std::min(rest.find('"'), rest.find('\''));
+    if (q == npos) {
+      end = gt;
+      return npos;
+    }
+    j += q;
+    const size_t close = s.find(s[j], j + 1);
+    if (close == npos) {  // a value never closed: the parser's error
+      end = npos;
+      return npos;
+    }
+    j = close + 1;
+    if (j < s.size() && !isXmlSpace(s[j]) && s[j] != '/' && s[j] != '>') return j;
+  }
+}
+
+// Whether s[i] starts the <?xml ...?> declaration with white space before it: XML allows
+// nothing before the declaration but a byte order mark, tinyxml2 skips white space.
+static bool declarationAfterSpace(std::string_view s, size_t i) {
+  if (s.compare(i, 5, "<?xml") != 0 || i + 5 >= s.size() || !isXmlSpace(s[i + 5])) return false;
+  const size_t from = s.starts_with("\xEF\xBB\xBF") ? 3 : 0;
+  if (i <= from) return false;
+  return std::all_of(s.begin() + std::ptrdiff_t(from), s.begin() + std::ptrdiff_t(i), isXmlSpace);
+}
+
 // Markup tinyxml2 lets through that XML does not allow: white space after '<' ("< sphere/>",
-// which tinyxml2 reads as <sphere/>), and "--" inside a comment or a comment ending "--->".
+// which tinyxml2 reads as <sphere/>), "--" inside a comment or a comment ending "--->", two
+// attributes with no white space between them, and white space before the declaration.
 // The offset of the first, with what is wrong; npos when there is none.
 static std::pair<size_t, const char*> firstLaxMarkup(std::string_view s) {
   constexpr size_t npos = std::string_view::npos;
@@ -236,9 +276,17 @@ static std::pair<size_t, const char*> firstLaxMarkup(std::string_view s) {
     } else if (s.compare(i, 9, "<![CDATA[") == 0) {
       i = std::min(s.find("]]>", i), s.size());
     } else if (s.compare(i, 2, "<?") == 0) {
+      if (declarationAfterSpace(s, i))
+        return {i, "white space before the <?xml ...?> declaration (it must be the file's first bytes)"};
       i = std::min(s.find("?>", i), s.size());
-    } else if (i + 1 < s.size() && (s[i + 1] == ' ' || s[i + 1] == '\t' || s[i + 1] == '\n' || s[i + 1] == '\r')) {
+    } else if (i + 1 < s.size() && isXmlSpace(s[i + 1])) {
       return {i, "white space after '<' (an element's name follows '<' directly)"};
+    } else if (i + 1 < s.size() && s[i + 1] != '/' && s[i + 1] != '!') {
+      size_t end = npos;
+      if (const size_t bad = unseparatedAttribute(s, i + 1, end); bad != npos)
+        return {bad, "no white space between two attributes (XML requires it)"};
+      if (end == npos) break;
+      i = end;
     }
   }
   return {npos, nullptr};
@@ -271,6 +319,43 @@ void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std
   parseCheckedText(doc, bytes, name);
 }
 
+// The first closing tag that does not close the innermost open element, said as "<a> is closed
+// by </b> on line N" (or "</b> on line N closes no element"); empty where there is none.
+// tinyxml2's MISMATCHED_ELEMENT names only the line of the open element, so a closing tag too
+// many deep in a file pointed at <scene> on line 1 with nothing else to go on (blind11).
+static std::string firstMismatchedClose(std::string_view s) {
+  constexpr size_t npos = std::string_view::npos;
+  auto nameAt = [&](size_t from) {
+    const size_t to = std::min(s.find_first_of(" \t\r\n/>", from), s.size());
+    return s.substr(from, to - from);
+  };
+  std::vector<std::string_view> open;  // the names of the elements open, innermost last
+  for (size_t i = s.find('<'); i < s.size(); i = s.find('<', i + 1)) {
+    if (s.compare(i, 4, "<!--") == 0) {
+      i = s.find("-->", i + 4);
+    } else if (s.compare(i, 9, "<![CDATA[") == 0) {
+      i = s.find("]]>", i + 9);
+    } else if (s.compare(i, 2, "<?") == 0) {
+      i = s.find("?>", i + 2);
+    } else if (s.compare(i, 2, "</") == 0) {
+      const std::string_view closing = nameAt(i + 2);
+      if (!open.empty() && open.back() == closing) {
+        open.pop_back();
+        continue;  // to the next '<' (the tag's own '>' holds none)
+      }
+      const std::string tag = "</" + printable(closing) + "> on line " + std::to_string(lineAt(s, i));
+      return open.empty() ? tag + " closes no element" : "<" + printable(open.back()) + "> is closed by " + tag;
+    } else if (s.compare(i, 2, "<!") != 0) {
+      size_t end = npos;
+      if (unseparatedAttribute(s, i + 1, end) != npos) return {};  // refused before parsing
+      if (end != npos && s[end - 1] != '/') open.push_back(nameAt(i + 1));
+      i = end;
+    }
+    if (i == npos) break;
+  }
+  return {};
+}
+
 void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
   if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) return;
   const int line = std::max(1, doc.ErrorLineNum());
@@ -283,11 +368,19 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
     default: {
       // tinyxml2's names are terse; say what usually causes the commonest ones.
       std::string hint;
+      // The file cut short gives most of them: say so, not only the rarer causes.
       if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_ATTRIBUTE)
-        hint = ": an attribute given twice, or without quotes or '='";
-      else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT)
-        hint = ": an element not closed, or closed with another name";
-      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
+        hint = ": an attribute given twice, without quotes or '=', or the file ends inside its value";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_ELEMENT)
+        hint = ": a tag not closed by '>' or '/>', or the file ends inside one";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_TEXT)
+        hint = ": text after the <scene> element, or the file ends before its elements are closed";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_COMMENT) hint = ": a comment not closed by '-->'";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_CDATA) hint = ": a CDATA section not closed by ']]>'";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) {
+        const std::string which = firstMismatchedClose(bytes);
+        hint = ": " + (which.empty() ? "" : which + ": ") + "an element not closed, or closed with another name";
+      } else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
         hint = ": not XML, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_DECLARATION)
         hint = ": a <?...?> inside an element (scenes take none), or one not closed by '?>'";

@@ -48,6 +48,32 @@ TEST(PovBBox, RecomputedBoxHoldsTheTurnedCorners) {
   EXPECT_NEAR(turned.lengths[1], 1.0, 1e-7);
 }
 
+// blind11: POV-Ray tests each object's float box (Intersect_BBox_Dir) before the object. A
+// cylinder of radius 0.3 about x = 99998 has its side at x = 99997.7 and its box from the
+// float 99997.703125, so a ray that crosses the side between the two meets the cylinder but
+// not its box: POV-Ray sees nothing there (a shadow ray in scene far_origin_float_box).
+TEST(PovBBox, ARayThroughTheSliverOfAnObjectOutsideItsFloatBoxMissesIt) {
+  const Scene scene = buildScene(loadSceneString(
+      R"(<scene><cylinder base="0 0 0" cap="0 1.5 0" radius="0.3"><translate v="99998 50000 -299999.5"/></cylinder>
+         </scene>)",
+      "far.xml"));
+  const Primitive cylinder = scene.bvh.primitive(0);
+  const std::optional<PovBBox> box = povBBoxOf(cylinder);
+  ASSERT_TRUE(box.has_value());
+  EXPECT_EQ(box->lowerLeft[0], 99997.703125f);
+  // Through x = 99997.7015 at the axis's z, between the side and the box; the float origin,
+  // 99997.6953125, is farther from the box still.
+  const Ray sliver{{99997.696, 50001, -300001.5}, Vec3{0.00275, 0, 1} / length(Vec3{0.00275, 0, 1})};
+  EXPECT_FALSE(povBBoxDirHits(*box, sliver));
+  EXPECT_FALSE(cylinder.intersect(sliver, 1e-4, 1e7).has_value());
+  uint64_t tests = 0;
+  EXPECT_FALSE(scene.bvh.closest(sliver, 1e-4, 1e7, tests).has_value());
+  // 0.005 farther in, through the box too: a hit.
+  const Ray inside{{99997.701, 50001, -300001.5}, sliver.dir};
+  EXPECT_TRUE(povBBoxDirHits(*box, inside));
+  EXPECT_TRUE(cylinder.intersect(inside, 1e-4, 1e7).has_value());
+}
+
 // A red box from y = 0 to 1 and a green disc lying on its top face, both seen straight down
 // at the disc's centre: the two meet the ray at exactly one depth.
 std::string boxAndDisc(bool discFirst, int lights) {

@@ -101,6 +101,70 @@ TEST(XmlBadInput, OnlyOneRootAndNoDeclarationsInside) {
   EXPECT_NO_THROW(loadSceneString("<!-- before --><scene/><!-- after -->"));
 }
 
+// tinyxml2 read <sphere center="0 0 0"radius="1"/> as two attributes and skipped white space
+// before <?xml ...?>; XML requires white space between attributes and nothing before the
+// declaration (blind11).
+TEST(XmlBadInput, AttributesWithoutWhiteSpaceBetweenThemAreRefused) {
+  const std::string unseparated = "error: xml: no white space between two attributes (XML requires it)";
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\"radius=\"1\"/>")), "t.xml:2: " + unseparated);
+  EXPECT_EQ(errorOf(inScene("<sphere center='0 0 0'\nradius='1'/>\n<sphere center='0 0 0'radius='1'/>")),
+            "t.xml:4: " + unseparated);
+  EXPECT_EQ(errorOf("<scene>\n<camera location=\"0 1 -5\">\n<rotate v='0 1 0'v='1'/></camera></scene>"),
+            "t.xml:3: " + unseparated);
+  // Quotes and '>' inside values, and "/>" or ">" right after the last quote, are fine.
+  EXPECT_NO_THROW(
+      loadSceneString("<scene><material name=\"m\"/><sphere center=\"0 0 0\" radius=\"1\" "
+                      "material='m'/><!-- a\"b --><sphere\tcenter=\"0 0 0\"\nradius=\"1\" ></sphere>"
+                      "</scene>"));
+  EXPECT_EQ(errorOf(inScene("<material name=\"a>'b\"/>")),
+            "t.xml:2: error: material: material names use letters, digits and '_' only, got \"a>'b\"");
+}
+
+TEST(XmlBadInput, NothingButAByteOrderMarkBeforeTheDeclaration) {
+  const std::string before =
+      ": error: xml: white space before the <?xml ...?> declaration (it must be the file's first bytes)";
+  EXPECT_EQ(errorOf("\n<?xml version=\"1.0\"?>\n<scene/>"), "t.xml:2" + before);
+  EXPECT_EQ(errorOf("\xEF\xBB\xBF <?xml version=\"1.0\"?><scene/>"), "t.xml:1" + before);
+  EXPECT_NO_THROW(loadSceneString("\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<scene/>"));
+  EXPECT_NO_THROW(loadSceneString("\n  <scene/>"));
+}
+
+// A file cut short: each of tinyxml2's errors says that the end of the file may be the cause.
+TEST(XmlBadInput, FilesCutShortSaySo) {
+  EXPECT_EQ(errorOf("<scene>\n<sphere center=\"0 0 0\" radius=\"1"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, without "
+            "quotes or '=', or the file ends inside its value)");
+  EXPECT_EQ(errorOf("<scene>\n<sphere center=\"0 0 0\"\n<sph"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ELEMENT: a tag not closed by '>' or '/>', or the "
+            "file ends inside one)");
+  EXPECT_EQ(errorOf("<scene>\n</sce"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ELEMENT: a tag not closed by '>' or '/>', or the "
+            "file ends inside one)");
+  EXPECT_EQ(errorOf("<scene/>\njunk"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_TEXT: text after the <scene> element, or the file "
+            "ends before its elements are closed)");
+  EXPECT_EQ(errorOf("<scene>\n<!-- a"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_COMMENT: a comment not closed by '-->')");
+  EXPECT_EQ(errorOf("<scene>\n<![CDATA[ a"),
+            "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_CDATA: a CDATA section not closed by ']]>')");
+}
+
+// tinyxml2 names the line of the element whose closing tag does not match: for a closing tag
+// too many, <scene> on line 1. The message also says which closing tag, and where.
+TEST(XmlBadInput, AMismatchedClosingTagIsNamedWithItsLine) {
+  auto message = [](int line, const std::string& which) {
+    return "t.xml:" + std::to_string(line) + ": error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: " + which +
+           ": an element not closed, or closed with another name)";
+  };
+  EXPECT_EQ(errorOf("<scene>\n<cylinder base=\"0 0 0\" cap=\"0 1 0\" radius=\"1\">\n</cylinder>\n</cylinder>\n"
+                    "</scene>"),
+            message(1, "<scene> is closed by </cylinder> on line 4"));
+  // Comments, CDATA, quoted '>' and empty elements do not count as tags.
+  EXPECT_EQ(errorOf("<scene>\n<!-- </x> --><![CDATA[</y>]]><sphere center=\"0 0 0\" radius=\"1\">"
+                    "<pigment color=\">\"/><finish>\n</sphere></finish></scene>"),
+            message(2, "<finish> is closed by </sphere> on line 3"));
+}
+
 // tinyxml2 reads any <?name ...?> as a declaration; only <?xml ...?>, first, is one.
 TEST(XmlBadInput, ProcessingInstructionsAreRefusedByName) {
   EXPECT_EQ(errorOf("<?xml version=\"1.0\"?>\n<?xml-stylesheet href=\"a.css\"?>\n<scene/>"),

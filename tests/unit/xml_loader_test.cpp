@@ -1031,11 +1031,11 @@ TEST(XmlLoader, ErrorBadBoolean) {
 TEST(XmlLoader, ErrorMalformedXml) {
   // tinyxml2 names the line of the element left open.
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: an element not closed, or closed with another name)");
+                     "t.xml:2: error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: <sphere> is closed by </scene> on line 3: an element not closed, or closed with another name)");
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=\"0 0 0\" center=\"1 1 1\" radius=\"1\"/>\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, or without quotes or '=')");
+                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, without quotes or '=', or the file ends inside its value)");
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=0 radius=\"1\"/>\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, or without quotes or '=')");
+                     "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, without quotes or '=', or the file ends inside its value)");
   const std::string parsing =
       "error: xml: malformed XML (XML_ERROR_PARSING: not XML, or the file ends before its elements are closed)";
   EXPECT_SCENE_ERROR("sphere { <0, 0, 0>, 1 }", "t.xml:1: " + parsing);
