@@ -379,7 +379,7 @@ bool Bvh::replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept
       case PrimitiveRecord::Kind::Other: break;
     }
     if (others_[it.other].bounds().empty()) return -INFINITY;
-    const std::optional<PovBBox> box = povBBoxOf(others_[it.other]);
+    const std::optional<PovBBox> box = others_[it.other].povBBox();
     if (!box) return std::nullopt;
     return povBBoxKey(*box, ray);
   };

@@ -276,7 +276,7 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
   // the origin leaves slivers of it out (a cylinder 1e5 away: blind11). Testing the box after
   // a hit gives the same answer, and makes the box only for the few rays that hit.
   if (!hit) return hit;
-  const std::optional<PovBBox> box = povBBoxOf(*this);
+  const std::optional<PovBBox> box = povBBox();
   if (box && withinFloatBoxReach(*box, ray) && !povBBoxDirHits(*box, ray)) return std::nullopt;
   return hit;
 }
@@ -349,7 +349,7 @@ bool Primitive::inside(const Vec3& p) const {
   // rounding at its surface); a disc's is the half-space below it, and its box a slab 2e-3 thick: a camera farther
   // from the disc's plane is inside no disc.
   if (std::holds_alternative<PovDiscShape>(shape))
-    if (const std::optional<PovBBox> box = povBBoxOf(*this)) return povBBoxHolds(*box, p);
+    if (const std::optional<PovBBox> box = povBBox()) return povBBoxHolds(*box, p);
   return true;
 }
 

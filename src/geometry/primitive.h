@@ -13,6 +13,7 @@
 #include "core/ray.h"
 #include "core/transform.h"
 #include "geometry/bounds.h"
+#include "geometry/pov_bbox.h"
 #include "geometry/pov_cone.h"
 #include "geometry/pov_disc.h"
 #include "geometry/pov_mesh.h"
@@ -64,6 +65,11 @@ struct Primitive {
   bool noShadow = false;
   bool opaque = true;  // its material lets no light through: a shadow ray hitting it is blocked
   float unit = 1.0f;   // the scene's length unit: the shape tolerances above are multiplied by it
+  // POV-Ray's float bounding box of the object (povBBoxOf), made once when the scene's store
+  // takes the primitive (PrimitiveStore::compact), since every hit tests it; povBBox() makes it
+  // for a primitive made by hand.
+  bool povBoxKnown = false;
+  std::optional<PovBBox> povBox;
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
@@ -72,6 +78,8 @@ struct Primitive {
   SurfacePoint surfacePoint(const Ray& ray, const ShapeHit& hit) const;
   // Geometric normal at the hit (world space, unit, not yet flipped toward the ray).
   Vec3 normal(const Ray& ray, const ShapeHit& hit) const;
+  // povBox, or where it is not known yet, povBBoxOf(*this).
+  std::optional<PovBBox> povBBox() const { return povBoxKnown ? povBox : povBBoxOf(*this); }
   // World-space bounds; empty() for unbounded shapes (planes).
   Bounds bounds() const;
   // POV-Ray's Inside(): is the world point inside the solid? (false for flat shapes

@@ -24,6 +24,8 @@ PrimitiveRecord PrimitiveStore::compact(Primitive&& p, std::vector<Primitive>& o
     r.kind = PrimitiveRecord::Kind::Plane;
   } else {
     r.other = uint32_t(others.size());
+    p.povBox = povBBoxOf(p);
+    p.povBoxKnown = true;
     others.push_back(std::move(p));
   }
   return r;
