@@ -33,9 +33,12 @@ PrimitiveRecord PrimitiveStore::compact(Primitive&& p, std::vector<Primitive>& o
 
 Primitive primitiveOf(const PrimitiveRecord& r, const std::vector<Primitive>& others) {
   switch (r.kind) {
-    case PrimitiveRecord::Kind::Sphere: return {r.sphere, nullptr, r.material, r.object, r.noShadow, r.opaque, r.unit};
-    case PrimitiveRecord::Kind::Plane: return {r.plane, nullptr, r.material, r.object, r.noShadow, r.opaque, r.unit};
-    case PrimitiveRecord::Kind::Other: break;
+    case PrimitiveRecord::Kind::Sphere:
+      return {r.sphere, nullptr, r.material, r.object, r.noShadow, r.opaque, r.unit, false, std::nullopt};
+    case PrimitiveRecord::Kind::Plane:
+      return {r.plane, nullptr, r.material, r.object, r.noShadow, r.opaque, r.unit, false, std::nullopt};
+    case PrimitiveRecord::Kind::Other:
+      break;
   }
   return others[r.other];
 }
@@ -44,8 +47,10 @@ Bounds boundsOf(const PrimitiveRecord& r, const std::vector<Primitive>& others) 
   switch (r.kind) {
     case PrimitiveRecord::Kind::Sphere:  // as Primitive::bounds() has it
       return {r.sphere.center - Vec3(r.sphere.radius), r.sphere.center + Vec3(r.sphere.radius)};
-    case PrimitiveRecord::Kind::Plane: return {};
-    case PrimitiveRecord::Kind::Other: break;
+    case PrimitiveRecord::Kind::Plane:
+      return {};
+    case PrimitiveRecord::Kind::Other:
+      break;
   }
   return others[r.other].bounds();
 }
