@@ -325,10 +325,6 @@ std::vector<LightBuffer::Occluder> Bvh::occluders() const {
   return out;
 }
 
-namespace {
-constexpr double kTieFar = 1e6;  // float keys' ulp is 1/16 there
-}  // namespace
-
 void Bvh::setTieRule(TieRule rule) {
   tieRule_ = rule;
   tieExtent_ = 0;
@@ -339,10 +335,8 @@ void Bvh::setTieRule(TieRule rule) {
                              std::fabs(b.hi.y), std::fabs(b.hi.z)});
     }
   if (!std::isfinite(tieExtent_)) tieExtent_ = 0;
-  // Beyond kTieFar from the origin a float key is coarser than a tenth of a unit, so POV-Ray's
-  // order there is its rounding's, not the scene's: pvrt keeps the nearer hit, as its
-  // arithmetic does elsewhere for far scenes (docs/robustness.md).
-  if (tieRule_ == TieRule::BoxEntry && tieExtent_ >= kTieFar) tieRule_ = TieRule::FirstFound;
+  // Beyond kPovFloatReach pvrt keeps the nearer hit (geometry/pov_bbox.h).
+  if (tieRule_ == TieRule::BoxEntry && tieExtent_ >= kPovFloatReach) tieRule_ = TieRule::FirstFound;
 }
 
 // A key is a few float roundings (relative 2^-24 each) of (box corner - origin) / direction
@@ -352,7 +346,7 @@ void Bvh::setTieRule(TieRule rule) {
 Bvh::TieReach Bvh::tieReach(const Ray& ray) const {
   if (tieRule_ != TieRule::BoxEntry) return {};
   const double from = std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z);
-  if (from >= kTieFar) return {};  // exact ties only (setTieRule)
+  if (from >= kPovFloatReach) return {};  // exact ties only (setTieRule)
   double least = 1.0;  // the smallest direction component that can give a key
   for (double d : {ray.dir.x, ray.dir.y, ray.dir.z})
     if (d != 0) least = std::min(least, std::fabs(d));

@@ -14,6 +14,12 @@ namespace pvrt {
 
 struct Primitive;
 
+// How far from the origin pvrt follows POV-Ray's float boxes (the tie keys, the box test after
+// a hit). Beyond, a float is coarser than a tenth of a unit (1/16 at 1e6): POV-Ray's order and
+// cuts there are its rounding's, not the scene's, and pvrt keeps its own exact answer, which
+// stays the same under translation (docs/robustness.md; hard.translate_base).
+constexpr double kPovFloatReach = 1e6;
+
 struct PovBBox {
   float lowerLeft[3] = {0, 0, 0};
   float lengths[3] = {0, 0, 0};

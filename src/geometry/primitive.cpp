@@ -257,14 +257,13 @@ std::optional<ShapeHit> intersectShape(const Primitive& p, const Ray& ray, doubl
   return std::visit(Intersector{local, tMin, tMax, false, p.unit}, p.shape);
 }
 
-// Whether the ray's origin and the box lie within 1e6 of the origin. Beyond, a float is coarser
-// than a tenth of a unit and POV-Ray's float box test cuts whole pieces off objects: pvrt keeps
-// them there, as its tie rule keeps the nearer hit (accel/bvh.cpp, kTieFar; hard.translate_base).
+// Whether the ray's origin and the box lie within kPovFloatReach, where pvrt follows POV-Ray's
+// float box test (geometry/pov_bbox.h): beyond, it cuts whole pieces off objects.
 bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
-  constexpr double kFar = 1e6;
-  if (std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) >= kFar) return false;
+  if (std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) >= kPovFloatReach) return false;
   for (int a = 0; a < 3; ++a)
-    if (std::fabs(box.lowerLeft[a]) >= kFar || std::fabs(box.lowerLeft[a] + box.lengths[a]) >= kFar) return false;
+    if (std::fabs(box.lowerLeft[a]) >= kPovFloatReach || std::fabs(box.lowerLeft[a] + box.lengths[a]) >= kPovFloatReach)
+      return false;
   return true;
 }
 
@@ -274,7 +273,7 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
   const std::optional<ShapeHit> hit = intersectShape(*this, ray, tMin, tMax);
   // POV-Ray tests an object only when the ray meets its float bounding box, which far from
   // the origin leaves slivers of it out (a cylinder 1e5 away: blind11). Testing the box after
-  // a hit gives the same answer, and makes the box only for the few rays that hit.
+  // a hit gives the same answer, and only the rays that hit pay for it.
   if (!hit) return hit;
   const std::optional<PovBBox> box = povBBox();
   if (box && withinFloatBoxReach(*box, ray) && !povBBoxDirHits(*box, ray)) return std::nullopt;

@@ -69,7 +69,7 @@ struct Primitive {
   // takes the primitive (PrimitiveStore::compact), since every hit tests it; povBBox() makes it
   // for a primitive made by hand.
   bool povBoxKnown = false;
-  std::optional<PovBBox> povBox;
+  std::optional<PovBBox> povBox{};
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;

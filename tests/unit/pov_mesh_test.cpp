@@ -244,7 +244,9 @@ TEST(PovMesh, CachedTriangleStandsForItsWholeMesh) {
     if (scene.bvh.object(i) == 0) {  // the mesh
       ++meshTriangles;
       EXPECT_TRUE(whole) << i;
-      if (!alone) EXPECT_GE(tests, 2u) << "the other triangle was tried";
+      if (!alone) {
+        EXPECT_GE(tests, 2u) << "the other triangle was tried";
+      }
     } else {
       EXPECT_EQ(whole, alone) << i;
       EXPECT_FALSE(whole) << i;
@@ -255,7 +257,9 @@ TEST(PovMesh, CachedTriangleStandsForItsWholeMesh) {
   // Beyond the range, the mesh is not hit.
   for (uint32_t i = 0; i < 4; ++i) {
     uint64_t tests = 0;
-    if (scene.bvh.object(i) == 0) EXPECT_FALSE(scene.bvh.objectHit(i, down, 1e-4, 0.5, tests));
+    if (scene.bvh.object(i) == 0) {
+      EXPECT_FALSE(scene.bvh.objectHit(i, down, 1e-4, 0.5, tests));
+    }
   }
 }
 
