@@ -3,7 +3,8 @@
 
 In each round: OpenMP with N threads (the new build), then hybrid `dynamic` 2 x N/2 and 4 x N/4 and MPI `dynamic`
 N x 1 of the new build and of the base build; forward in even rounds, backward in odd ones. Per run: the render
-stage and the slowest rank's compute, from `--stats-json`. Prints medians and the per-round ratios; writes a CSV.
+and write stages and the slowest rank's compute, from `--stats-json`, and the whole command's wall time. Prints
+medians and the per-round ratios; writes a CSV.
 
     bench/hybrid_ab.py --new BUNDLE/pvrt.sh --base BUNDLE/pvrt-base.sh --mpirun BUNDLE/mpirun.sh --csv OUT.csv
 """
@@ -59,11 +60,11 @@ def main(argv):
                 try:
                     with open(path) as f:
                         d = json.load(f)
-                    render = d["seconds"]["render"]
+                    render, write = d["seconds"]["render"], d["seconds"]["write"]
                     compute = max((r["compute_seconds"] for r in d.get("ranks", [])), default=None)
                 except (OSError, ValueError, KeyError):
-                    render = compute = None
-                rows.append(dict(round=rnd, config=name, rc=rc, wall_s=wall, render_s=render,
+                    render = write = compute = None
+                rows.append(dict(round=rnd, config=name, rc=rc, wall_s=wall, render_s=render, write_s=write,
                                  max_rank_compute_s=compute))
     with open(a.csv, "w") as f:
         f.write(",".join(rows[0]) + "\n")
@@ -81,6 +82,9 @@ def main(argv):
         line = "%-12s render median %.4f s [%.4f-%.4f], %d runs" % (name, st.median(v), min(v), max(v), len(v))
         if gap:
             line += "; render minus slowest rank's compute %.1f ms" % (1000 * st.median(gap))
+        done = [r for r in rows if r["config"] == name and r["render_s"]]
+        line += "; write %.1f ms; wall %.3f s" % (1000 * st.median(r["write_s"] for r in done),
+                                                   st.median(r["wall_s"] for r in done))
         if name != base:
             line += "; / %s per round %.3f" % (base, st.median(
                 [b[name]["render_s"] / b[base]["render_s"] for b in by.values() if name in b and base in b]))

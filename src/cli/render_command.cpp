@@ -26,6 +26,7 @@
 #include "image/image_io.h"
 #include "image/load_map_picture.h"
 #include "parallel/cluster.h"
+#include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 #include "render/distributed.h"
 #include "render/renderer.h"
@@ -527,7 +528,14 @@ int runMpi(const RenderOptions& o) {
     removeStagedFilesNow();
     cluster::abortAll(int(ExitCode::Internal));
   }
-  if (me != 0) return 0;  // only rank 0 writes
+  if (me != 0) {  // only rank 0 writes
+    releaseIdleThreads();
+    return 0;
+  }
+  // The node's other ranks have sent their last pixels and wait in MPI_Finalize (asleep, not
+  // spinning), their threads ended: the encoding takes their CPUs too. 16 ranks of one thread
+  // wrote paper1's 1280x800 PNG in 50-70 ms, one process of 16 threads in 8-15 ms.
+  takeWholeShare();
   const RenderSettings& s = p->settings;
   const StageClock writing;
   if (d.eightBit) {

@@ -32,6 +32,13 @@ void parallelTeam(int workers, const std::function<void(int worker)>& team);
 // so bodies catch their own.
 void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body);
 
+// Ends the threads that parallel regions left waiting for the next one. OpenMP keeps them
+// spinning for a while after a region (libgomp: GOMP_SPINCOUNT turns, 10-20 ms on a recent
+// Xeon), on CPUs that another process of the node may need: an MPI rank calls this when its
+// work is done, so that rank 0's write stage gets the node's CPUs at once. A later region
+// starts new threads.
+void releaseIdleThreads();
+
 // [0, n) cut into consecutive blocks of nearly equal size, for passes over big arrays whose
 // per-block results are then combined in block order: about four blocks for each of up to
 // `threads` threads (0: threadBudget()), none under `grain` indices (one block for a small n).

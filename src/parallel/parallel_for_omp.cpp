@@ -147,6 +147,8 @@ void parallelTeam(int workers, const std::function<void(int worker)>& team) {
   }
 }
 
+void releaseIdleThreads() { (void)omp_pause_resource_all(omp_pause_soft); }
+
 void parallelIndices(size_t n, int threads, const std::function<void(size_t)>& body) {
   const int team = int(std::min<size_t>(n, size_t(threads > 0 ? threads : threadBudget())));
   if (team <= 1) {

@@ -15,6 +15,11 @@ namespace pvrt {
 namespace {
 std::atomic<int> gBudget{0};
 std::atomic<int> gSlot{0}, gSlots{1};
+std::atomic<int> gSharers{1};  // the processes of the share as set, kept when pinning ends it
+#if defined(__linux__)
+cpu_set_t gStartMask;  // the mask before pinProcessToShare narrowed it
+std::atomic<bool> gNarrowed{false};
+#endif
 }  // namespace
 
 std::vector<int> allowedCpus() {
@@ -33,6 +38,7 @@ std::vector<int> allowedCpus() {
 void setCpuShare(CpuShare share) {
   gSlots = std::max(1, share.slots);
   gSlot = std::clamp(share.slot, 0, gSlots - 1);
+  if (gSlots > 1) gSharers = gSlots.load();
 }
 
 CpuShare cpuShare() { return {gSlot.load(), gSlots.load()}; }
@@ -75,12 +81,27 @@ bool pinProcessToShare() {
   cpu_set_t mine;
   CPU_ZERO(&mine);
   for (size_t k = 0; k < width; ++k) CPU_SET(cpus[size_t(share.slot) * width + k], &mine);
+  if (sched_getaffinity(0, sizeof gStartMask, &gStartMask) != 0) return false;
   if (sched_setaffinity(0, sizeof mine, &mine) != 0) return false;
+  gNarrowed = true;
   setCpuShare({});
   return true;
 #else
   return false;
 #endif
+}
+
+int takeWholeShare() {
+  const int sharers = gSharers.exchange(1);
+  if (sharers <= 1) return threadBudget();
+  const int together = threadBudget() * sharers;
+#if defined(__linux__)
+  // The calling thread's mask; threads started after this inherit it.
+  if (gNarrowed.exchange(false)) (void)sched_setaffinity(0, sizeof gStartMask, &gStartMask);
+#endif
+  setCpuShare({});
+  setThreadBudget(std::min(together, int(allowedCpus().size())));
+  return threadBudget();
 }
 
 }  // namespace pvrt

@@ -42,4 +42,11 @@ bool pinProcessToShare();
 // Whether pvrt may choose CPUs for its threads (see pinProcessToShare).
 bool pinningAllowed();
 
+// Once the other processes of the share (the node's other MPI ranks) have no more work,
+// this one takes what they all had: the mask it started with, if pinProcessToShare had
+// narrowed it, and as many threads as the sharers had together (at most one a CPU).
+// For MPI rank 0's write stage, which would otherwise encode the whole image on the
+// threads of one rank (one, in a run of one thread a rank). Returns the new budget.
+int takeWholeShare();
+
 }  // namespace pvrt

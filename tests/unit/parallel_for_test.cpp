@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <filesystem>
 #include <mutex>
 #include <random>
 #include <set>
@@ -63,6 +64,26 @@ TEST(ParallelFor, ThreadsArePinnedOnlyDuringTheRender) {
     EXPECT_EQ(cpusOfWorkers[1].size(), 1u);
     EXPECT_NE(*cpusOfWorkers[0].begin(), *cpusOfWorkers[1].begin()) << "both workers on one CPU";
   }
+}
+
+int threadsOfThisProcess() {
+  int n = 0;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) n += task.is_directory();
+  return n;
+}
+
+// An MPI rank done with its work ends the threads OpenMP keeps waiting after a region, so
+// that they spin on no CPU rank 0's write could use; a later region starts them again.
+TEST(ParallelFor, IdleThreadsCanBeEnded) {
+  const int alone = threadsOfThisProcess();
+  std::atomic<int> ran{0};
+  parallelIndices(4, 2, [&](size_t) { ++ran; });
+  EXPECT_EQ(ran.load(), 4);
+  ASSERT_GT(threadsOfThisProcess(), alone) << "OpenMP kept no thread after the region";
+  releaseIdleThreads();
+  EXPECT_EQ(threadsOfThisProcess(), alone);
+  parallelIndices(4, 2, [&](size_t) { ++ran; });
+  EXPECT_EQ(ran.load(), 8);
 }
 
 // permuteInPlace gives what a copy gathered slot by slot gives, on any number of threads,
