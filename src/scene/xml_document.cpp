@@ -319,17 +319,23 @@ void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std
   parseCheckedText(doc, bytes, name);
 }
 
-// The first closing tag that does not close the innermost open element, said as "<a> is closed
-// by </b> on line N" (or "</b> on line N closes no element"); empty where there is none.
-// tinyxml2's MISMATCHED_ELEMENT names only the line of the open element, so a closing tag too
-// many deep in a file pointed at <scene> on line 1 with nothing else to go on (blind11).
-static std::string firstMismatchedClose(std::string_view s) {
+// The first closing tag that does not close the innermost open element, said as "<a> of line M
+// is closed by </b> on line N" (or "</b> on line N closes no element"), and that line N; empty text where
+// there is none. tinyxml2's MISMATCHED_ELEMENT names only the line of the open element, so a
+// closing tag too many deep in a file pointed at <scene> on line 1 (blind11): the error is
+// placed on the closing tag's line instead, where the fix is.
+struct MismatchedClose {
+  std::string text;
+  int line = 0;
+};
+static MismatchedClose firstMismatchedClose(std::string_view s) {
   constexpr size_t npos = std::string_view::npos;
   auto nameAt = [&](size_t from) {
     const size_t to = std::min(s.find_first_of(" \t\r\n/>", from), s.size());
     return s.substr(from, to - from);
   };
   std::vector<std::string_view> open;  // the names of the elements open, innermost last
+  std::vector<size_t> openedAt;        // and where their tags start
   for (size_t i = s.find('<'); i < s.size(); i = s.find('<', i + 1)) {
     if (s.compare(i, 4, "<!--") == 0) {
       i = s.find("-->", i + 4);
@@ -341,14 +347,22 @@ static std::string firstMismatchedClose(std::string_view s) {
       const std::string_view closing = nameAt(i + 2);
       if (!open.empty() && open.back() == closing) {
         open.pop_back();
+        openedAt.pop_back();
         continue;  // to the next '<' (the tag's own '>' holds none)
       }
-      const std::string tag = "</" + printable(closing) + "> on line " + std::to_string(lineAt(s, i));
-      return open.empty() ? tag + " closes no element" : "<" + printable(open.back()) + "> is closed by " + tag;
+      const int line = lineAt(s, i);
+      const std::string tag = "</" + printable(closing) + "> on line " + std::to_string(line);
+      if (open.empty()) return {tag + " closes no element", line};
+      return {"<" + printable(open.back()) + "> of line " + std::to_string(lineAt(s, openedAt.back())) +
+                  " is closed by " + tag,
+              line};
     } else if (s.compare(i, 2, "<!") != 0) {
       size_t end = npos;
       if (unseparatedAttribute(s, i + 1, end) != npos) return {};  // refused before parsing
-      if (end != npos && s[end - 1] != '/') open.push_back(nameAt(i + 1));
+      if (end != npos && s[end - 1] != '/') {
+        open.push_back(nameAt(i + 1));
+        openedAt.push_back(i);
+      }
       i = end;
     }
     if (i == npos) break;
@@ -358,7 +372,7 @@ static std::string firstMismatchedClose(std::string_view s) {
 
 void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
   if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) return;
-  const int line = std::max(1, doc.ErrorLineNum());
+  int line = std::max(1, doc.ErrorLineNum());
   std::string what;
   switch (doc.ErrorID()) {
     case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: what = "the file is empty"; break;
@@ -378,8 +392,10 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_COMMENT) hint = ": a comment not closed by '-->'";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_CDATA) hint = ": a CDATA section not closed by ']]>'";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) {
-        const std::string which = firstMismatchedClose(bytes);
-        hint = ": " + (which.empty() ? "" : which + ": ") + "an element not closed, or closed with another name";
+        const MismatchedClose which = firstMismatchedClose(bytes);
+        if (!which.text.empty()) line = which.line;
+        const std::string named = which.text.empty() ? "" : which.text + ": ";
+        hint = ": " + named + "an element not closed, or closed with another name";
       } else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
         hint = ": not XML, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_DECLARATION)

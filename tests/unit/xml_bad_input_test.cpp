@@ -158,11 +158,11 @@ TEST(XmlBadInput, AMismatchedClosingTagIsNamedWithItsLine) {
   };
   EXPECT_EQ(errorOf("<scene>\n<cylinder base=\"0 0 0\" cap=\"0 1 0\" radius=\"1\">\n</cylinder>\n</cylinder>\n"
                     "</scene>"),
-            message(1, "<scene> is closed by </cylinder> on line 4"));
+            message(4, "<scene> of line 1 is closed by </cylinder> on line 4"));
   // Comments, CDATA, quoted '>' and empty elements do not count as tags.
   EXPECT_EQ(errorOf("<scene>\n<!-- </x> --><![CDATA[</y>]]><sphere center=\"0 0 0\" radius=\"1\">"
                     "<pigment color=\">\"/><finish>\n</sphere></finish></scene>"),
-            message(2, "<finish> is closed by </sphere> on line 3"));
+            message(3, "<finish> of line 2 is closed by </sphere> on line 3"));
 }
 
 // tinyxml2 reads any <?name ...?> as a declaration; only <?xml ...?>, first, is one.

@@ -1029,9 +1029,9 @@ TEST(XmlLoader, ErrorBadBoolean) {
 }
 
 TEST(XmlLoader, ErrorMalformedXml) {
-  // tinyxml2 names the line of the element left open.
+  // The error is on the line of the closing tag that disagrees; the text names both lines.
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=\"0 0 0\" radius=\"1\">\n</scene>",
-                     "t.xml:2: error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: <sphere> is closed by </scene> on line 3: an element not closed, or closed with another name)");
+                     "t.xml:3: error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: <sphere> of line 2 is closed by </scene> on line 3: an element not closed, or closed with another name)");
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=\"0 0 0\" center=\"1 1 1\" radius=\"1\"/>\n</scene>",
                      "t.xml:2: error: xml: malformed XML (XML_ERROR_PARSING_ATTRIBUTE: an attribute given twice, without quotes or '=', or the file ends inside its value)");
   EXPECT_SCENE_ERROR("<scene>\n<sphere center=0 radius=\"1\"/>\n</scene>",
