@@ -5,6 +5,7 @@
 #include <string>
 
 #if defined(__linux__) && defined(__GLIBC__)
+#include <malloc.h>
 #include <unistd.h>
 #endif
 
@@ -29,6 +30,15 @@ void restartWithHugePages(char** argv) {
   // Only reached when the restart failed: go on with small pages.
 #else
   (void)argv;
+#endif
+}
+
+void keepHeapTop() {
+#if defined(__linux__) && defined(__GLIBC__)
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && (std::strstr(tunables, "glibc.malloc.top_pad") || std::strstr(tunables, "glibc.malloc.trim_threshold")))
+    return;
+  (void)mallopt(M_TOP_PAD, 64 << 20);
 #endif
 }
 

@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
     return int(pvrt::ExitCode::Usage);
   }
   pvrt::cli::restartWithHugePages(argv);
+  pvrt::cli::keepHeapTop();
   CLI::App app{"pvrt: a parallel ray tracer whose pictures match POV-Ray 3.7"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pvrt 0.1.0");
