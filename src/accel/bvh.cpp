@@ -8,6 +8,7 @@
 #include <new>
 
 #include "accel/packet_rays.h"
+#include "accel/pov_heap_order.h"
 #include "accel/slabs.h"
 #include "core/lanes.h"
 #include "core/prefault.h"
@@ -379,6 +380,26 @@ bool Bvh::replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept
   };
   const std::optional<double> mine = keyOf(found), theirs = keyOf(kept);
   if (!mine || !theirs) return tFound < tKept;  // a box pvrt does not know: the nearer hit
+  if (tFound == tKept && *mine == -INFINITY && *theirs == -INFINITY) {
+    // Two planes at one depth: the one POV-Ray's heap pops first (accel/pov_heap_order.h).
+    // How many of the root's finite entries wait in the queue beside them is known where the
+    // scene has at most BUNCHING_FACTOR (4) finite objects: the root then holds those objects
+    // themselves, and the ray's box test accepts those whose key is finite. Otherwise (more
+    // objects, a mesh, a box pvrt does not know) the plane declared first is kept.
+    constexpr uint32_t kBunchingFactor = 4;
+    if (boundedCount_ > kBunchingFactor) return false;
+    int queued = 0;
+    for (uint32_t i = 0; i < boundedCount_; ++i) {
+      for (uint32_t j = 0; j < i; ++j)
+        if (items_[j].object == items_[i].object) return false;  // one object of several primitives
+      const std::optional<double> key = keyOf(i);
+      if (!key) return false;
+      queued += std::isfinite(*key) ? 1 : 0;
+    }
+    const std::vector<int> order = povPlanePopOrder(queued, int(items_.size() - boundedCount_));
+    auto rank = [&](uint32_t i) { return std::find(order.begin(), order.end(), int(i - boundedCount_)) - order.begin(); };
+    return rank(found) < rank(kept);
+  }
   if (*mine < *theirs) return !(*theirs <= tFound && tKept < tFound);  // found's box first
   return *mine <= tKept && tFound < tKept;  // kept's box first (or equal keys: the one found first)
 }
