@@ -8,6 +8,7 @@
 #include <new>
 
 #include "accel/packet_rays.h"
+#include "accel/pov_bbox_root.h"
 #include "accel/pov_heap_order.h"
 #include "accel/slabs.h"
 #include "core/lanes.h"
@@ -381,21 +382,30 @@ bool Bvh::replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept
   const std::optional<double> mine = keyOf(found), theirs = keyOf(kept);
   if (!mine || !theirs) return tFound < tKept;  // a box pvrt does not know: the nearer hit
   if (tFound == tKept && *mine == -INFINITY && *theirs == -INFINITY) {
-    // Two planes at one depth: the one POV-Ray's heap pops first (accel/pov_heap_order.h).
-    // How many of the root's finite entries wait in the queue beside them is known where the
-    // scene has at most BUNCHING_FACTOR (4) finite objects: the root then holds those objects
-    // themselves, and the ray's box test accepts those whose key is finite. Otherwise (more
-    // objects, a mesh, a box pvrt does not know) the plane declared first is kept.
-    constexpr uint32_t kBunchingFactor = 4;
-    if (boundedCount_ > kBunchingFactor) return false;
-    int queued = 0;
+    // Two planes at one depth: the one POV-Ray's heap pops first (accel/pov_heap_order.h),
+    // which depends on how many of its tree root's finite entries the ray enters
+    // (accel/pov_bbox_root.h). pvrt makes the root from the finite objects' POV-Ray boxes here,
+    // ties being rare. Where an object's box is unknown (a mesh, one object of several
+    // primitives, a shape pvrt holds otherwise), or the objects are too many to sort at every
+    // tie, the plane declared first is kept.
+    constexpr uint32_t kMostObjects = 1024;
+    if (boundedCount_ > kMostObjects) return false;
+    std::vector<std::pair<uint32_t, PovBBox>> objects;  // (object, box), to be put in declaration order
     for (uint32_t i = 0; i < boundedCount_; ++i) {
-      for (uint32_t j = 0; j < i; ++j)
-        if (items_[j].object == items_[i].object) return false;  // one object of several primitives
-      const std::optional<double> key = keyOf(i);
-      if (!key) return false;
-      queued += std::isfinite(*key) ? 1 : 0;
+      const PrimitiveRecord& it = items_[i];
+      std::optional<PovBBox> box;
+      if (it.kind == PrimitiveRecord::Kind::Sphere) box = povSphereBBox(it.sphere.center, it.sphere.radius);
+      else if (it.kind == PrimitiveRecord::Kind::Other) box = others_[it.other].povBBox();
+      if (!box) return false;
+      objects.emplace_back(it.object, *box);
     }
+    std::sort(objects.begin(), objects.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t k = 1; k < objects.size(); ++k)
+      if (objects[k].first == objects[k - 1].first) return false;  // one object of several primitives
+    std::vector<PovBBox> finite;
+    for (const auto& o : objects) finite.push_back(o.second);
+    int queued = 0;
+    for (const PovBBox& entry : povRootEntryBoxes(std::move(finite))) queued += std::isfinite(povBBoxKey(entry, ray));
     const std::vector<int> order = povPlanePopOrder(queued, int(items_.size() - boundedCount_));
     auto rank = [&](uint32_t i) { return std::find(order.begin(), order.end(), int(i - boundedCount_)) - order.begin(); };
     return rank(found) < rank(kept);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/pov_bbox_root.h"
 #include "accel/pov_heap_order.h"
 #include "accel/tie_order.h"
 #include "render/scene.h"
@@ -149,6 +150,22 @@ TEST(TieOrder, EqualPlaneKeysPopFromPovRaysHeapOutOfOrder) {
   EXPECT_EQ(povPlanePopOrder(0, 4), (std::vector<int>{0, 3, 2, 1}));
   EXPECT_EQ(povPlanePopOrder(4, 4), (std::vector<int>{0, 1, 2, 3}));
   EXPECT_EQ(povPlanePopOrder(3, 5), (std::vector<int>{0, 2, 3, 1, 4}));
+}
+
+TEST(TieOrder, PovRaysRootHoldsTheObjectsUnlessSplittingThemPays) {
+  // Five unit boxes in a row, 2 apart: no split beats sort_and_split's first guess (the whole
+  // box's area times size - 3), so the root holds the five boxes themselves.
+  std::vector<PovBBox> row;
+  for (int k = 0; k < 5; ++k) row.push_back(makePovBBox(2 * k, 0, 0, 1, 1, 1));
+  EXPECT_EQ(povRootEntryBoxes(row).size(), 5u);
+  // Two clusters of three, 100 apart: cut in two nodes of three, which make the root.
+  std::vector<PovBBox> clusters;
+  for (double x : {0.0, 1.1, 2.2, 100.0, 101.1, 102.2}) clusters.push_back(makePovBBox(x, 0, 0, 1, 1, 1));
+  const std::vector<PovBBox> root = povRootEntryBoxes(clusters);
+  ASSERT_EQ(root.size(), 2u);
+  EXPECT_EQ(root[0].lowerLeft[0], 0.0f);
+  EXPECT_NEAR(root[0].lengths[0], 3.2f, 1e-6);
+  EXPECT_EQ(root[1].lowerLeft[0], 100.0f);
 }
 
 // blind12: a corridor of two walls and a floor seen along the line where the right wall meets
