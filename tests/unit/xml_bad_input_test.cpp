@@ -137,6 +137,13 @@ TEST(XmlBadInput, TheDeclarationAfterACommentOrInsideTheSceneIsNotFirst) {
   EXPECT_NO_THROW(loadSceneString("\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<scene/>"));
 }
 
+TEST(XmlBadInput, AMarkupDeclarationCutShortSaysSo) {
+  const std::string cut = ": error: xml: malformed XML (XML_ERROR_PARSING_UNKNOWN: a <!...> not closed by '>', such "
+                          "as a comment or CDATA section cut short at its start)";
+  EXPECT_EQ(errorOf("<scene>\n<!-"), "t.xml:2" + cut);
+  EXPECT_EQ(errorOf("<scene>\n\n<![CDA"), "t.xml:3" + cut);
+}
+
 TEST(XmlBadInput, TextWithNoMarkupIsNotAScene) {
   EXPECT_EQ(errorOf("\n  Name:\tpvrt\nState:\tR (running)\n"),
             "t.xml:2: error: xml: not an XML scene: the file holds text (\"Name:\\tpvrt\") and no element");
