@@ -22,12 +22,14 @@ constexpr double kBoundHuge = 2.0e10;  // BOUND_HUGE
 
 // find_axis: the axis along which the boxes' near corners spread most (POV-Ray compares
 // the far side, float near corner + float length, but records the near corner).
-inline int findAxis(const std::vector<PovBBox>& f, size_t first, size_t last) {
+template <class Boxes>
+inline int findAxis(const Boxes& f, size_t first, size_t last) {
   double mins[3] = {kBoundHuge, kBoundHuge, kBoundHuge}, maxs[3] = {-kBoundHuge, -kBoundHuge, -kBoundHuge};
   for (size_t i = first; i < last; ++i)
     for (int a = 0; a < 3; ++a) {
-      if (f[i].lowerLeft[a] < mins[a]) mins[a] = f[i].lowerLeft[a];
-      if (f[i].lowerLeft[a] + f[i].lengths[a] > maxs[a]) maxs[a] = f[i].lowerLeft[a];
+      const PovBBox& b = f[i].box;
+      if (b.lowerLeft[a] < mins[a]) mins[a] = b.lowerLeft[a];
+      if (b.lowerLeft[a] + b.lengths[a] > maxs[a]) maxs[a] = b.lowerLeft[a];
     }
   int which = 0;
   double d = -kBoundHuge;
@@ -52,22 +54,27 @@ struct Union {
   }
 };
 
-// sort_and_split on f[first, last): true when it made one node of them all (its entries'
-// boxes in `root`), false when it split them into nodes appended to f.
-inline bool sortAndSplit(std::vector<PovBBox>& f, size_t first, size_t last, std::vector<PovBBox>& root) {
+struct Entry {
+  PovBBox box;
+  int object;  // the object's place in declaration order, or -1 for a node
+};
+
+// sort_and_split on f[first, last): true when it made one node of them all (its entries in
+// `root`, in the node's order), false when it split them into nodes appended to f.
+inline bool sortAndSplit(std::vector<Entry>& f, size_t first, size_t last, std::vector<Entry>& root) {
   if (last <= first) return true;
   const int axis = findAxis(f, first, last);
   const size_t size = last - first;
   // compboxes: the float 2 * near corner + length; glibc's qsort of a small array is a merge
   // sort, which keeps equal keys in order, as std::stable_sort does.
-  auto key = [axis](const PovBBox& b) { return float(2.0 * b.lowerLeft[axis] + b.lengths[axis]); };
+  auto key = [axis](const Entry& e) { return float(2.0 * e.box.lowerLeft[axis] + e.box.lengths[axis]); };
   std::stable_sort(f.begin() + std::ptrdiff_t(first), f.begin() + std::ptrdiff_t(last),
-                   [&key](const PovBBox& a, const PovBBox& b) { return key(a) < key(b); });
+                   [&key](const Entry& a, const Entry& b) { return key(a) < key(b); });
   std::vector<double> left(size), right(size);
   Union u;
-  for (size_t i = first; i < last; ++i) u.add(f[i]), left[i - first] = u.area();
+  for (size_t i = first; i < last; ++i) u.add(f[i].box), left[i - first] = u.area();
   u = Union{};
-  for (size_t i = last; i-- > first;) u.add(f[i]), right[i - first] = u.area();
+  for (size_t i = last; i-- > first;) u.add(f[i].box), right[i - first] = u.area();
   double best = right[0] * (double(size) - 3.0);
   std::ptrdiff_t bestLoc = -1;
   for (size_t i = 0; i + 1 < size; ++i)
@@ -76,8 +83,8 @@ inline bool sortAndSplit(std::vector<PovBBox>& f, size_t first, size_t last, std
   if (size <= kBunchingFactor || bestLoc < 0) {
     root.assign(f.begin() + std::ptrdiff_t(first), f.begin() + std::ptrdiff_t(last));
     Union node;
-    for (size_t i = first; i < last; ++i) node.add(f[i]);
-    f.push_back(povBBoxFromMinMax({node.lo[0], node.lo[1], node.lo[2]}, {node.hi[0], node.hi[1], node.hi[2]}));
+    for (size_t i = first; i < last; ++i) node.add(f[i].box);
+    f.push_back({povBBoxFromMinMax({node.lo[0], node.lo[1], node.lo[2]}, {node.hi[0], node.hi[1], node.hi[2]}), -1});
     return true;
   }
   sortAndSplit(f, first, size_t(bestLoc) + 1, root);
@@ -87,13 +94,21 @@ inline bool sortAndSplit(std::vector<PovBBox>& f, size_t first, size_t last, std
 
 }  // namespace pov_bbox_root_detail
 
-// The boxes of the root's entries for finite objects with these boxes, in declaration order
-// (none for none: the root is then the planes' node itself).
-inline std::vector<PovBBox> povRootEntryBoxes(std::vector<PovBBox> finite) {
-  std::vector<PovBBox> root;
-  size_t low = 0, high = finite.size();
-  while (!pov_bbox_root_detail::sortAndSplit(finite, low, high, root)) low = high, high = finite.size();
+// The root's entries for finite objects with these boxes, in declaration order, as the root
+// node holds them (none for none: the root is then the planes' node itself).
+inline std::vector<pov_bbox_root_detail::Entry> povRootEntries(const std::vector<PovBBox>& finite) {
+  std::vector<pov_bbox_root_detail::Entry> f, root;
+  for (size_t i = 0; i < finite.size(); ++i) f.push_back({finite[i], int(i)});
+  size_t low = 0, high = f.size();
+  while (!pov_bbox_root_detail::sortAndSplit(f, low, high, root)) low = high, high = f.size();
   return root;
+}
+
+// The boxes of those entries.
+inline std::vector<PovBBox> povRootEntryBoxes(const std::vector<PovBBox>& finite) {
+  std::vector<PovBBox> boxes;
+  for (const auto& e : povRootEntries(finite)) boxes.push_back(e.box);
+  return boxes;
 }
 
 }  // namespace pvrt

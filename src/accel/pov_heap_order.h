@@ -12,9 +12,45 @@
 // finite entries are in the queue beside them and on how many planes there are.
 #pragma once
 
+#include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace pvrt {
+
+// POV-Ray's priority queue of tree nodes by key (priority_queue_insert, Priority_Queue_Delete):
+// a binary heap counted from 1 whose removal moves the last element to the top and sifts it
+// down towards the right child of two equals.
+class PovQueue {
+ public:
+  struct Entry {
+    double key;
+    int id;
+  };
+  void push(Entry e) {
+    heap_.push_back(e);
+    size_t i = heap_.size() - 1;
+    for (; i > 1 && e.key < heap_[i / 2].key; i /= 2) heap_[i] = heap_[i / 2];
+    heap_[i] = e;
+  }
+  Entry pop() {
+    const Entry top = heap_[1];
+    heap_[1] = heap_.back();
+    heap_.pop_back();
+    const size_t size = heap_.size() - 1;
+    for (size_t i = 1; 2 * i <= size;) {
+      const size_t j = 2 * i == size || heap_[2 * i].key < heap_[2 * i + 1].key ? 2 * i : 2 * i + 1;
+      if (!(heap_[i].key > heap_[j].key)) break;
+      std::swap(heap_[i], heap_[j]);
+      i = j;
+    }
+    return top;
+  }
+  bool empty() const { return heap_.size() == 1; }
+
+ private:
+  std::vector<Entry> heap_ = std::vector<Entry>(1);  // heap_[0] unused
+};
 
 // The order in which POV-Ray's heap pops `planes` equal keys pushed in order 0, 1, ... onto
 // a queue that already holds `others` larger keys: element r is the plane popped r-th.
@@ -22,36 +58,12 @@ inline std::vector<int> povPlanePopOrder(int others, int planes) {
   // Only the heap's shape matters: a plane's parent is always a plane (its key is the
   // least), and a larger key sifted down passes planes by their positions alone, so the
   // others may all be given one key.
-  struct Entry {
-    int key, plane;
-  };
-  std::vector<Entry> heap(1);  // heap[0] unused: POV-Ray's queue counts from 1
-  auto push = [&heap](Entry e) {  // priority_queue_insert
-    heap.push_back(e);
-    size_t i = heap.size() - 1;
-    for (; i > 1 && e.key < heap[i / 2].key; i /= 2) heap[i] = heap[i / 2];
-    heap[i] = e;
-  };
-  auto pop = [&heap]() {  // Priority_Queue_Delete
-    const Entry top = heap[1];
-    heap[1] = heap.back();
-    heap.pop_back();
-    const size_t size = heap.size() - 1;
-    for (size_t i = 1; 2 * i <= size;) {
-      const size_t j = 2 * i == size || heap[2 * i].key < heap[2 * i + 1].key ? 2 * i : 2 * i + 1;
-      if (!(heap[i].key > heap[j].key)) break;
-      std::swap(heap[i], heap[j]);
-      i = j;
-    }
-    return top;
-  };
-  for (int k = 0; k < others; ++k) push({1, -1});
-  for (int p = 0; p < planes; ++p) push({0, p});
+  PovQueue queue;
+  for (int k = 0; k < others; ++k) queue.push({1, -1});
+  for (int p = 0; p < planes; ++p) queue.push({0, p});
   std::vector<int> order;
-  while (int(order.size()) < planes) {
-    const Entry e = pop();
-    if (e.plane >= 0) order.push_back(e.plane);
-  }
+  while (int(order.size()) < planes)
+    if (const PovQueue::Entry e = queue.pop(); e.id >= 0) order.push_back(e.id);
   return order;
 }
 
