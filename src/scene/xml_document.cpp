@@ -251,8 +251,12 @@ static size_t unseparatedAttribute(std::string_view s, size_t from, size_t& end)
 
 // Whether s[i] starts the <?xml ...?> declaration with white space before it: XML allows
 // nothing before the declaration but a byte order mark, tinyxml2 skips white space.
+static bool declarationAt(std::string_view s, size_t i) {
+  return s.compare(i, 5, "<?xml") == 0 && i + 5 < s.size() && isXmlSpace(s[i + 5]);
+}
+
 static bool declarationAfterSpace(std::string_view s, size_t i) {
-  if (s.compare(i, 5, "<?xml") != 0 || i + 5 >= s.size() || !isXmlSpace(s[i + 5])) return false;
+  if (!declarationAt(s, i)) return false;
   const size_t from = s.starts_with("\xEF\xBB\xBF") ? 3 : 0;
   if (i <= from) return false;
   return std::all_of(s.begin() + std::ptrdiff_t(from), s.begin() + std::ptrdiff_t(i), isXmlSpace);
@@ -278,9 +282,20 @@ static std::pair<size_t, const char*> firstLaxMarkup(std::string_view s) {
     } else if (s.compare(i, 2, "<?") == 0) {
       if (declarationAfterSpace(s, i))
         return {i, "white space before the <?xml ...?> declaration (it must be the file's first bytes)"};
+      // After a comment or inside <scene>, tinyxml2 said "a <?...?> inside an element" (blind12).
+      if (declarationAt(s, i) && i > (s.starts_with("\xEF\xBB\xBF") ? 3u : 0u))
+        return {i, "the <?xml ...?> declaration may appear only once, first"};
       i = std::min(s.find("?>", i), s.size());
     } else if (i + 1 < s.size() && isXmlSpace(s[i + 1])) {
       return {i, "white space after '<' (an element's name follows '<' directly)"};
+    } else if (s.compare(i, 2, "</") == 0) {
+      // tinyxml2 reads attributes in a closing tag (</sphere x="1">) and drops them (blind12).
+      size_t j = i + 2;
+      while (j < s.size() && !isXmlSpace(s[j]) && s[j] != '>') ++j;
+      while (j < s.size() && isXmlSpace(s[j])) ++j;
+      if (j >= s.size()) break;  // cut short: the parser's error
+      if (s[j] != '>') return {j, "a closing tag holds more than its name (</name> takes no attributes)"};
+      i = j;
     } else if (i + 1 < s.size() && s[i + 1] != '/' && s[i + 1] != '!') {
       size_t end = npos;
       if (const size_t bad = unseparatedAttribute(s, i + 1, end); bad != npos)
@@ -387,10 +402,21 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
         hint = ": an attribute given twice, without quotes or '=', or the file ends inside its value";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_ELEMENT)
         hint = ": a tag not closed by '>' or '/>', or the file ends inside one";
-      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_TEXT)
+      else if (const size_t from = bytes.find_first_not_of(" \t\r\n", bytes.starts_with("\xEF\xBB\xBF") ? 3 : 0);
+               doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_TEXT && bytes.find('<') == std::string_view::npos &&
+               from != std::string_view::npos) {
+        // Text and no markup at all (a note, /proc/self/status): there is no <scene> to be after (blind12).
+        const size_t to = bytes.find_first_of("\r\n", from);
+        throw sceneError({name, lineAt(bytes, from)}, "xml",
+                         "not an XML scene: the file holds text (\"" +
+                             printable(bytes.substr(from, to == std::string_view::npos ? to : to - from), 20) +
+                             "\") and no element");
+      } else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_TEXT)
         hint = ": text after the <scene> element, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_COMMENT) hint = ": a comment not closed by '-->'";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_CDATA) hint = ": a CDATA section not closed by ']]>'";
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_UNKNOWN)  // "<!-", "<![CDA", "<!DOCTYPE" cut short (blind12)
+        hint = ": a <!...> not closed by '>', such as a comment or CDATA section cut short at its start";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) {
         const MismatchedClose which = firstMismatchedClose(bytes);
         if (!which.text.empty()) line = which.line;

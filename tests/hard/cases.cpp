@@ -263,7 +263,10 @@ CoplanarParts coplanarParts(const SceneDesc& s) {
   CoplanarParts c;
   for (const ObjectDesc& o : s.objects) {
     const Color col = o.material.pigment.color.rgb * o.material.finish->ambient;
-    if (const auto* p = std::get_if<SphereDesc>(&o.shape); p && !c.sphere) c.sphere = p, c.sphereColor = col;
+    // Of the two identical spheres POV-Ray shows the second: their boxes are one box, so the
+    // ray enters both at one float depth and its bounding heap pops the second first (the
+    // planes' node, then the spheres and the disc in the root's order; accel/pov_heap_order.h).
+    if (const auto* p = std::get_if<SphereDesc>(&o.shape)) c.sphere = p, c.sphereColor = col;
     if (const auto* p = std::get_if<PlaneDesc>(&o.shape); p && !c.plane) c.plane = p, c.planeColor = col;
     if (const auto* p = std::get_if<DiscDesc>(&o.shape); p && !c.disc) c.disc = p, c.discColor = col;
   }
@@ -278,7 +281,7 @@ ExpectedImage coplanar(const CaseInput& in) {
     const SphereRoots s = sphereRoots(ray.o, ray.d, V(parts.sphere->center), parts.sphere->radius);
     e.margin[0] = double((s.perp - parts.sphere->radius) / parts.sphere->radius);
     if (!std::isnan(s.t1) && s.t1 > 0) {
-      e.c = parts.sphereColor;  // exact tie: the first sphere in the file
+      e.c = parts.sphereColor;  // exact tie: the sphere POV-Ray's heap pops first (above)
       return e;
     }
     const V n = unit(V(parts.plane->normal));

@@ -120,6 +120,37 @@ TEST(XmlBadInput, AttributesWithoutWhiteSpaceBetweenThemAreRefused) {
             "t.xml:2: error: material: material names use letters, digits and '_' only, got \"a>'b\"");
 }
 
+// tinyxml2 read the attributes of a closing tag and dropped them, so </sphere x="1"> loaded; and
+// a file of text with no markup at all was said to have "text after the <scene> element"
+// (blind12).
+TEST(XmlBadInput, AClosingTagHoldsOnlyItsName) {
+  const std::string more = "error: xml: a closing tag holds more than its name (</name> takes no attributes)";
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\"></sphere x=\"1\">")), "t.xml:2: " + more);
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1\">\n</sphere\njunk>")), "t.xml:4: " + more);
+  EXPECT_NO_THROW(loadSceneString(inScene("<sphere center=\"0 0 0\" radius=\"1\"></sphere \n\t>")));
+}
+
+TEST(XmlBadInput, TheDeclarationAfterACommentOrInsideTheSceneIsNotFirst) {
+  const std::string notFirst = ": error: xml: the <?xml ...?> declaration may appear only once, first";
+  EXPECT_EQ(errorOf("<!-- c -->\n<?xml version=\"1.0\"?>\n<scene/>"), "t.xml:2" + notFirst);
+  EXPECT_EQ(errorOf("<scene>\n\n<?xml version=\"1.0\"?>\n</scene>"), "t.xml:3" + notFirst);
+  EXPECT_NO_THROW(loadSceneString("\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<scene/>"));
+}
+
+TEST(XmlBadInput, AMarkupDeclarationCutShortSaysSo) {
+  const std::string cut = ": error: xml: malformed XML (XML_ERROR_PARSING_UNKNOWN: a <!...> not closed by '>', such "
+                          "as a comment or CDATA section cut short at its start)";
+  EXPECT_EQ(errorOf("<scene>\n<!-"), "t.xml:2" + cut);
+  EXPECT_EQ(errorOf("<scene>\n\n<![CDA"), "t.xml:3" + cut);
+}
+
+TEST(XmlBadInput, TextWithNoMarkupIsNotAScene) {
+  EXPECT_EQ(errorOf("\n  Name:\tpvrt\nState:\tR (running)\n"),
+            "t.xml:2: error: xml: not an XML scene: the file holds text (\"Name:\\tpvrt\") and no element");
+  EXPECT_EQ(errorOf("hello world, this is a long line of text\n"),
+            "t.xml:1: error: xml: not an XML scene: the file holds text (\"hello world, this is...\") and no element");
+}
+
 TEST(XmlBadInput, NothingButAByteOrderMarkBeforeTheDeclaration) {
   const std::string before =
       ": error: xml: white space before the <?xml ...?> declaration (it must be the file's first bytes)";
