@@ -8,7 +8,6 @@
 #include <new>
 
 #include "accel/packet_rays.h"
-#include "accel/pov_bbox_root.h"
 #include "accel/pov_heap_order.h"
 #include "accel/slabs.h"
 #include "core/lanes.h"
@@ -382,55 +381,39 @@ bool Bvh::replacesHit(uint32_t found, double tFound, uint32_t kept, double tKept
   const std::optional<double> mine = keyOf(found), theirs = keyOf(kept);
   if (!mine || !theirs) return tFound < tKept;  // a box pvrt does not know: the nearer hit
   // Equal keys (two planes, or two objects whose boxes the ray enters at one float depth) fall
-  // to POV-Ray's heap (accel/pov_heap_order.h), which depends on its tree's root
-  // (accel/pov_bbox_root.h). pvrt makes the root again from the finite objects' POV-Ray boxes
-  // here, ties being rare. Where an object's box is unknown (a mesh, one object of several
-  // primitives, a shape pvrt holds otherwise), or the objects are too many to sort at every
-  // tie, the one found first is kept, as before.
+  // to POV-Ray's heap (accel/pov_heap_order.h), which depends on its tree's root, made once by
+  // the build (makePovTieRoot). Where pvrt could not make it, the one found first is kept.
   if (tFound == tKept && *mine == *theirs) {
-    constexpr uint32_t kMostObjects = 1024;
-    if (boundedCount_ > kMostObjects) return false;
-    std::vector<std::pair<uint32_t, PovBBox>> objects;  // (object, box), to be put in declaration order
-    for (uint32_t i = 0; i < boundedCount_; ++i) {
-      const PrimitiveRecord& it = items_[i];
-      std::optional<PovBBox> box;
-      if (it.kind == PrimitiveRecord::Kind::Sphere) box = povSphereBBox(it.sphere.center, it.sphere.radius);
-      else if (it.kind == PrimitiveRecord::Kind::Other) box = others_[it.other].povBBox();
-      if (!box) return false;
-      objects.emplace_back(it.object, *box);
-    }
-    std::sort(objects.begin(), objects.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (size_t k = 1; k < objects.size(); ++k)
-      if (objects[k].first == objects[k - 1].first) return false;  // one object of several primitives
-    std::vector<PovBBox> finite;
-    for (const auto& o : objects) finite.push_back(o.second);
-    const auto root = povRootEntries(finite);
+    if (!povTieKnown_) return false;
     const int planes = int(items_.size() - boundedCount_);
     if (*mine == -INFINITY) {  // two planes: only how many root entries wait beside them matters
       int queued = 0;
-      for (const auto& entry : root) queued += std::isfinite(povBBoxKey(entry.box, ray));
+      for (const PovBBox& box : povTieRootBoxes_) queued += std::isfinite(povBBoxKey(box, ray));
       const std::vector<int> order = povPlanePopOrder(queued, planes);
-      auto rank = [&](uint32_t i) { return std::find(order.begin(), order.end(), int(i - boundedCount_)) - order.begin(); };
+      auto rank = [&](uint32_t i) {
+        return std::find(order.begin(), order.end(), int(i - boundedCount_)) - order.begin();
+      };
       return rank(found) < rank(kept);
     }
     // Two finite objects: the walk pushes the root's entries (the planes' node first, key
     // -MAX_DISTANCE), pops the planes' node and pushes its planes, and pops on; the object
     // popped first is tested first and keeps the tie. Known where the root holds the objects
     // themselves; a root of nodes pushes and pops more, which pvrt does not follow.
-    if (std::any_of(root.begin(), root.end(), [](const auto& e) { return e.object < 0; })) return false;
+    if (!povTieRootHoldsObjects_) return false;
     constexpr double kMaxDistance = 1e7;  // POV-Ray's MAX_DISTANCE
     constexpr int kPlanesNode = -2, kPlane = -3;
     PovQueue queue;
     if (planes > 0) queue.push({-kMaxDistance, kPlanesNode});
-    for (const auto& entry : root)
-      if (const double key = povBBoxKey(entry.box, ray); std::isfinite(key)) queue.push({key, entry.object});
+    for (size_t k = 0; k < povTieRootBoxes_.size(); ++k)
+      if (const double key = povBBoxKey(povTieRootBoxes_[k], ray); std::isfinite(key))
+        queue.push({key, povTieRootEntries_[k]});
     while (!queue.empty()) {
       const PovQueue::Entry e = queue.pop();
       if (e.id == kPlanesNode)
         for (int k = 0; k < planes; ++k) queue.push({-kMaxDistance, kPlane});
       if (e.id < 0) continue;
-      if (objects[size_t(e.id)].first == a) return true;
-      if (objects[size_t(e.id)].first == b) return false;
+      if (povTieObjects_[size_t(e.id)] == a) return true;
+      if (povTieObjects_[size_t(e.id)] == b) return false;
     }
     return false;
   }

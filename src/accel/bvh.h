@@ -292,6 +292,8 @@ class Bvh {
   void followRecords(int threads);
   // Sets sharesObject on the records of objects made of several primitives.
   void markSharedObjects();
+  // Makes the povTie* members below (the build's last step).
+  void makePovTieRoot();
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
@@ -312,6 +314,13 @@ class Bvh {
   BvhStats stats_;
   TieRule tieRule_ = TieRule::FirstFound;
   double tieExtent_ = 0;  // the largest coordinate of the bounded primitives' boxes (for tieReach)
+  // POV-Ray's bounding-tree root, for hits at one depth with equal keys (replacesHit), known
+  // for scenes of at most 1024 bounded primitives, one an object, whose POV-Ray boxes pvrt has.
+  bool povTieKnown_ = false;
+  bool povTieRootHoldsObjects_ = false;   // no node among the root's entries
+  std::vector<uint32_t> povTieObjects_;   // the finite objects, in declaration order
+  std::vector<PovBBox> povTieRootBoxes_;  // the root's entries' boxes
+  std::vector<int> povTieRootEntries_;    // and what each is: an index into povTieObjects_, or -1 for a node
 };
 
 }  // namespace pvrt
