@@ -36,7 +36,8 @@ void restartWithHugePages(char** argv) {
 void keepHeapTop() {
 #if defined(__linux__) && defined(__GLIBC__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (tunables && (std::strstr(tunables, "glibc.malloc.top_pad") || std::strstr(tunables, "glibc.malloc.trim_threshold")))
+  if (tunables &&
+      (std::strstr(tunables, "glibc.malloc.top_pad") || std::strstr(tunables, "glibc.malloc.trim_threshold")))
     return;
   (void)mallopt(M_TOP_PAD, 64 << 20);
 #endif

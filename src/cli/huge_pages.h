@@ -23,7 +23,8 @@ void restartWithHugePages(char** argv);
 // 392,493 page faults (1.6 GB zeroed) and 1.50 s of system time before, 237,124 and 0.83 s
 // after, at the same peak memory (466 and 461 MiB); with huge pages, 1.01-1.12 s of system
 // time before and 0.69-0.90 s after (3 alternating pairs; wall times within the 2-core
-// machine's noise). Pages never touched cost nothing, so small scenes do not grow. A glibc.malloc.top_pad or trim_threshold the user set stands.
+// machine's noise). Pages never touched cost nothing, so small scenes do not grow. A
+// glibc.malloc.top_pad or trim_threshold the user set stands.
 void keepHeapTop();
 
 }  // namespace pvrt::cli

@@ -415,7 +415,8 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
         hint = ": text after the <scene> element, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_COMMENT) hint = ": a comment not closed by '-->'";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_CDATA) hint = ": a CDATA section not closed by ']]>'";
-      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_UNKNOWN)  // "<!-", "<![CDA", "<!DOCTYPE" cut short (blind12)
+      // "<!-", "<![CDA", "<!DOCTYPE" cut short (blind12)
+      else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_UNKNOWN)
         hint = ": a <!...> not closed by '>', such as a comment or CDATA section cut short at its start";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) {
         const MismatchedClose which = firstMismatchedClose(bytes);
