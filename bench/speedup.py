@@ -275,8 +275,8 @@ def markdown(a, summary, slowdown, alone, together, meta):
     L = ["## Parallel scaling (%s, %d x %d, c = %d)" % (os.path.basename(a.scene), a.width, a.height, a.spp), ""]
     L += ["| | |", "|---|---|"] + ["| %s | %s |" % kv for kv in meta.items()] + [""]
     L += ["Render: the render stage from `--stats` (MPI: rank 0's, to the gathered image), median [min–max] of %d "
-          "interleaved rounds. Speedup: the median of every single-thread render of those rounds (`openmp tiles P=1` and "
-          "the ceiling's `alone`, the same command) over this one. E: speedup / P. "
+          "interleaved rounds. Speedup: the median of every single-thread render of those rounds "
+          "(`openmp tiles P=1` and the ceiling's `alone`, the same command) over this one. E: speedup / P. "
           "E/ceiling: E times the machine's own slow-down with P busy CPUs (below). Wall: the whole command "
           "(`mpirun` included) against one single-thread process's." % a.runs, ""]
     if alone and together:
