@@ -416,7 +416,7 @@ TEST(Bvh, CoincidentCentroidsStillBuildABalancedTree) {
 // Building on several threads gives the very tree one thread builds: the same nodes, in
 // the same order, over the same primitive order. 300,000 primitives take every parallel
 // path (nodes binned and partitioned by several threads, subtrees built and collapsed at the
-// same time, the primitives permuted in pieces): spheres, boxes, a slab of flat ones, a
+// same time, the primitives gathered in blocks): spheres, boxes, a slab of flat ones, a
 // heap with one centroid (no SAH split), and planes (unbounded) among them.
 TEST(Bvh, TheTreeDoesNotDependOnTheBuildThreads) {
   SceneMaker gen(35);

@@ -75,6 +75,7 @@ int threadsOfThisProcess() {
 // An MPI rank done with its work ends the threads OpenMP keeps waiting after a region, so
 // that they spin on no CPU rank 0's write could use; a later region starts them again.
 TEST(ParallelFor, IdleThreadsCanBeEnded) {
+  releaseIdleThreads();  // those an earlier test in this process left (the binary run whole)
   const int alone = threadsOfThisProcess();
   std::atomic<int> ran{0};
   parallelIndices(4, 2, [&](size_t) { ++ran; });
