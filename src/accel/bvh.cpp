@@ -328,6 +328,9 @@ std::vector<LightBuffer::Occluder> Bvh::occluders() const {
 
 void Bvh::setTieRule(TieRule rule) {
   tieRule_ = rule;
+  // The rule says whether POV-Ray builds its bounding tree (accel/tie_order.h), whose
+  // leaves' boxes a ray must pass first (Primitive::povTreeLeaf).
+  for (Primitive& p : others_) p.povTreeLeaf = rule == TieRule::BoxEntry;
   tieExtent_ = 0;
   if (!nodes_.empty())
     for (int c = 0; c < nodes_[0].used; ++c) {

@@ -78,7 +78,11 @@ std::optional<ShapeHit> hitBox(const BoxShape& b, const Ray& ray, double lo, dou
     }
   }
   const double minT = std::max(lo, kDepthTolerance * unit / len);
-  if (tNear > minT && tNear < hi && nearFace >= 0) return ShapeHit{tNear, nearFace};
+  // All_Intersections pushes the entry depth, then the exit depth, and Find_Intersection
+  // pops them from the top keeping only a strictly nearer one: a ray that enters and leaves
+  // at one depth, along an edge, is given the exit side.
+  if (tNear > minT && tNear < hi && nearFace >= 0)
+    return ShapeHit{tNear, tFar == tNear && farFace >= 0 ? farFace : nearFace};
   if (tFar > minT && tFar < hi && farFace >= 0) return ShapeHit{tFar, farFace};
   return std::nullopt;
 }
@@ -259,6 +263,13 @@ std::optional<ShapeHit> intersectShape(const Primitive& p, const Ray& ray, doubl
 
 // Whether the ray's origin and the box lie within kPovFloatReach, where pvrt follows POV-Ray's
 // float box test (geometry/pov_bbox.h): beyond, it cuts whole pieces off objects.
+// Whether POV-Ray 3.7 tests the object's float box before the object itself
+// (ObjectBase::Intersect_BBox): its boxes, spheres, planes and triangles override that test
+// to pass every ray (boxes.cpp, spheres.cpp, triangle.cpp); cylinders, cones and discs keep it.
+bool povTestsBoxFirst(const Shape& shape) {
+  return std::holds_alternative<PovConeShape>(shape) || std::holds_alternative<PovDiscShape>(shape);
+}
+
 bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
   if (std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) >= kPovFloatReach) return false;
   for (int a = 0; a < 3; ++a)
@@ -271,12 +282,19 @@ bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
 
 std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
   const std::optional<ShapeHit> hit = intersectShape(*this, ray, tMin, tMax);
-  // POV-Ray tests an object only when the ray meets its float bounding box, which far from
-  // the origin leaves slivers of it out (a cylinder 1e5 away: blind11). Testing the box after
-  // a hit gives the same answer, and only the rays that hit pay for it.
+  // POV-Ray tests a cylinder, cone or disc only when the ray meets its float bounding box,
+  // which far from the origin leaves slivers of it out (a cylinder 1e5 away: blind11). In its
+  // bounding tree every finite object's box is first a leaf that Check_And_Enqueue may turn
+  // away, in float depths of its own: a ray along a box's edge, which the box's own test hits,
+  // can fall outside them (blind12 c22). Testing the boxes after a hit gives the same answer,
+  // and only the rays that hit pay for it.
   if (!hit) return hit;
+  const bool boxFirst = povTestsBoxFirst(shape);
+  if (!boxFirst && !povTreeLeaf) return hit;
   const std::optional<PovBBox> box = povBBox();
-  if (box && withinFloatBoxReach(*box, ray) && !povBBoxDirHits(*box, ray)) return std::nullopt;
+  if (box && withinFloatBoxReach(*box, ray) &&
+      ((boxFirst && !povBBoxDirHits(*box, ray)) || (povTreeLeaf && !std::isfinite(povBBoxKey(*box, ray)))))
+    return std::nullopt;
   return hit;
 }
 

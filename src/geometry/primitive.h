@@ -70,6 +70,10 @@ struct Primitive {
   // for a primitive made by hand.
   bool povBoxKnown = false;
   std::optional<PovBBox> povBox{};
+  // POV-Ray's bounding tree holds the object (a scene of at least Bounding_Threshold objects
+  // and lights: Bvh::setTieRule), so a ray reaches it only where Check_And_Enqueue's float
+  // slabs let its box in, as well as Intersect_BBox's.
+  bool povTreeLeaf = false;
 
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
   std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;

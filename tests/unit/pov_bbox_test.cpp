@@ -77,6 +77,66 @@ TEST(PovBBox, ARayThroughTheSliverOfAnObjectOutsideItsFloatBoxMissesIt) {
   EXPECT_TRUE(cylinder.intersect(inside, 1e-4, 1e7).has_value());
 }
 
+// A box from y = 0 to 0.6 and z = -0.3 to 0.3, seen from (0, 3, -6) toward the origin in a
+// 160 x 100 image: the rays through the pixel corners (76, 40) .. (78, 40), which method 2 of
+// the antialiasing traces, run along its top back edge (scenes/outside/box_edge_*.xml). Their
+// directions as the camera makes them, bit for bit.
+constexpr const char* kEdgeBox = R"(<box corner1="-0.3 0 -0.3" corner2="0.3 0.6 0.3"/>)";
+const Ray kCorner76{{0, 3, -6}, {-0x1.45cbbbadcbdcfp-5, -0x1.6c40355ada05fp-2, 0x1.de1446073e27cp-1}};
+const Ray kCorner77{{0, 3, -6}, {-0x1.e8dce83209671p-6, -0x1.6c607ce04925ep-2, 0x1.de3ea3e66001bp-1}};
+const Ray kCorner78{{0, 3, -6}, {-0x1.45fd3ede6fe09p-6, -0x1.6c7790a5eb97bp-2, 0x1.de5cedd9c537p-1}};
+
+// POV-Ray 3.7's boxes, spheres and triangles override Intersect_BBox to pass every ray
+// (boxes.cpp), so the float box test that cuts slivers off cylinders is not theirs: the ray
+// along the edge that it would turn away meets the box (a box alone under one light, so no
+// bounding tree either). Before, pvrt tested every shape's float box and missed it.
+TEST(PovBBox, BoxesAreNotCutByTheFloatBoxTest) {
+  const Scene scene = buildScene(
+      loadSceneString(std::string(R"(<scene><light_source location="0 4 -3"/>)") + kEdgeBox + "</scene>", "edge.xml"));
+  const Primitive& box = scene.bvh.primitive(0);
+  ASSERT_TRUE(box.povBBox().has_value());
+  EXPECT_FALSE(povBBoxDirHits(*box.povBBox(), kCorner77));  // what the test would say
+  EXPECT_TRUE(box.intersect(kCorner77, 1e-4, 1e7).has_value());
+  uint64_t tests = 0;
+  EXPECT_TRUE(scene.bvh.closest(kCorner77, 1e-4, 1e7, tests).has_value());
+}
+
+// With a plane as well (three objects and lights: POV-Ray builds its bounding tree), a ray
+// reaches the box only where Check_And_Enqueue's float slabs let its leaf in: the ray at corner
+// 76 meets the box's own test but not those slabs, so POV-Ray shows the floor behind the edge.
+TEST(PovBBox, InTheBoundingTreeAnObjectIsReachedOnlyThroughItsLeafsFloatSlabs) {
+  const std::string plane = R"(<plane normal="0 1 0" distance="0"/>)";
+  const std::string light = R"(<light_source location="0 4 -3"/>)";
+  const Scene tree = buildScene(loadSceneString("<scene>" + plane + light + kEdgeBox + "</scene>", "edge.xml"));
+  const Primitive& box = tree.bvh.primitive(0);
+  ASSERT_TRUE(box.povBBox().has_value());
+  EXPECT_FALSE(std::isfinite(povBBoxKey(*box.povBBox(), kCorner76)));
+  EXPECT_FALSE(box.intersect(kCorner76, 1e-4, 1e7).has_value());
+  uint64_t tests = 0;
+  const auto seen = tree.bvh.closest(kCorner76, 1e-4, 1e7, tests);
+  ASSERT_TRUE(seen.has_value());
+  EXPECT_EQ(tree.bvh.object(seen->primitive), 0u);  // the plane
+  // Corner 78's ray passes the slabs: the box.
+  EXPECT_TRUE(std::isfinite(povBBoxKey(*box.povBBox(), kCorner78)));
+  EXPECT_TRUE(box.intersect(kCorner78, 1e-4, 1e7).has_value());
+  // Without the plane there is no tree (two objects and lights), and the box is met.
+  const Scene alone = buildScene(loadSceneString("<scene>" + light + kEdgeBox + "</scene>", "edge.xml"));
+  EXPECT_TRUE(alone.bvh.primitive(0).intersect(kCorner76, 1e-4, 1e7).has_value());
+}
+
+// A ray that enters and leaves a box at one depth is given the side it leaves by: POV-Ray's
+// All_Intersections pushes the exit after the entry, and Find_Intersection keeps the first it
+// pops unless a later one is strictly nearer. Corner 76's ray enters the top and leaves the back
+// at exactly one depth.
+TEST(PovBBox, ABoxMetAlongAnEdgeShowsTheSideTheRayLeavesBy) {
+  const Scene scene = buildScene(loadSceneString(std::string("<scene>") + kEdgeBox + "</scene>", "edge.xml"));
+  const auto hit = scene.bvh.primitive(0).intersect(kCorner76, 1e-4, 1e7);
+  ASSERT_TRUE(hit.has_value());
+  const Vec3 n = scene.bvh.primitive(0).normal(kCorner76, *hit);
+  EXPECT_EQ(n.z, 1.0);  // the back face, not the top (0, 1, 0)
+  EXPECT_EQ(n.y, 0.0);
+}
+
 // A red box from y = 0 to 1 and a green disc lying on its top face, both seen straight down
 // at the disc's centre: the two meet the ray at exactly one depth.
 std::string boxAndDisc(bool discFirst, int lights) {
