@@ -328,6 +328,7 @@ std::vector<LightBuffer::Occluder> Bvh::occluders() const {
 
 void Bvh::setTieRule(TieRule rule) {
   tieRule_ = rule;
+  if (rule != TieRule::BoxEntry) povAbove_.clear();
   // The rule says whether POV-Ray builds its bounding tree (accel/tie_order.h), whose
   // leaves' boxes a ray must pass first (Primitive::povTreeLeaf).
   for (Primitive& p : others_) p.povTreeLeaf = rule == TieRule::BoxEntry;
@@ -341,6 +342,18 @@ void Bvh::setTieRule(TieRule rule) {
   if (!std::isfinite(tieExtent_)) tieExtent_ = 0;
   // Beyond kPovFloatReach pvrt keeps the nearer hit (geometry/pov_bbox.h).
   if (tieRule_ == TieRule::BoxEntry && tieExtent_ >= kPovFloatReach) tieRule_ = TieRule::FirstFound;
+}
+
+bool Bvh::povPassesNodesAbove(uint32_t i, const Ray& ray) const {
+  // Within kPovFloatReach only, as Primitive::intersect's tests (the boxes are, by tieExtent_).
+  if (tieRule_ != TieRule::BoxEntry ||
+      std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) >= kPovFloatReach)
+    return true;
+  if (povAbove_[i].empty()) return true;
+  const PovRayInfo info(ray);
+  for (const PovBBox& box : povAbove_[i])
+    if (!std::isfinite(povBBoxKey(box, info))) return false;
+  return true;
 }
 
 // A key is a few float roundings (relative 2^-24 each) of (box corner - origin) / direction

@@ -304,7 +304,9 @@ class Bvh {
       case PrimitiveRecord::Kind::Plane: return detail::hitPlane(it.plane, ray, tMin, tMax, it.unit);
       case PrimitiveRecord::Kind::Other: break;
     }
-    return others_[it.other].intersect(ray, tMin, tMax);
+    std::optional<ShapeHit> hit = others_[it.other].intersect(ray, tMin, tMax);
+    if (hit && i < povAbove_.size() && !povPassesNodesAbove(i, ray)) return std::nullopt;
+    return hit;
   }
 
   std::vector<PrimitiveRecord> items_;  // one per primitive: bounded ones first, then unbounded
@@ -321,6 +323,11 @@ class Bvh {
   std::vector<uint32_t> povTieObjects_;   // the finite objects, in declaration order
   std::vector<PovBBox> povTieRootBoxes_;  // the root's entries' boxes
   std::vector<int> povTieRootEntries_;    // and what each is: an index into povTieObjects_, or -1 for a node
+  // For each bounded primitive kept whole (Kind::Other), the float boxes of the nodes above its
+  // object in POV-Ray's tree, which a ray must pass too (povBBoxTree); empty where the tree is
+  // not known or not built (setTieRule).
+  std::vector<std::vector<PovBBox>> povAbove_;
+  bool povPassesNodesAbove(uint32_t i, const Ray& ray) const;
 };
 
 }  // namespace pvrt

@@ -914,7 +914,18 @@ void Bvh::makePovTieRoot() {
     finite.push_back(box);
   }
   povTieRootHoldsObjects_ = true;
-  for (const pov_bbox_root_detail::Entry& entry : povRootEntries(finite)) {
+  const PovBBoxTree tree = povBBoxTree(finite);
+  std::vector<uint32_t> placeOf(objects.empty() ? 0 : size_t(objects.back().first) + 1, 0);
+  for (size_t k = 0; k < objects.size(); ++k) placeOf[objects[k].first] = uint32_t(k);
+  // The root's box is tested only where no plane makes the root infinite (Build_BBox_Tree).
+  const bool rootTested = boundedCount_ == items_.size();
+  povAbove_.assign(boundedCount_, {});
+  for (uint32_t i = 0; i < boundedCount_; ++i) {
+    if (items_[i].kind != PrimitiveRecord::Kind::Other) continue;
+    povAbove_[i] = tree.above[placeOf[items_[i].object]];
+    if (!rootTested && !povAbove_[i].empty()) povAbove_[i].pop_back();
+  }
+  for (const pov_bbox_root_detail::Entry& entry : tree.root) {
     povTieRootBoxes_.push_back(entry.box);
     povTieRootEntries_.push_back(entry.object);
     povTieRootHoldsObjects_ = povTieRootHoldsObjects_ && entry.object >= 0;

@@ -56,12 +56,20 @@ struct Union {
 
 struct Entry {
   PovBBox box;
-  int object;  // the object's place in declaration order, or -1 for a node
+  int object;     // the object's place in declaration order, or -1 for a node
+  int node = -1;  // for a node, its index among the nodes made
+};
+
+// A node sort_and_split made: its box and the node it went into (-1: none yet, the root).
+struct Node {
+  PovBBox box;
+  int parent = -1;
 };
 
 // sort_and_split on f[first, last): true when it made one node of them all (its entries in
 // `root`, in the node's order), false when it split them into nodes appended to f.
-inline bool sortAndSplit(std::vector<Entry>& f, size_t first, size_t last, std::vector<Entry>& root) {
+inline bool sortAndSplit(std::vector<Entry>& f, size_t first, size_t last, std::vector<Entry>& root,
+                         std::vector<Node>& nodes, std::vector<int>& parentOf) {
   if (last <= first) return true;
   const int axis = findAxis(f, first, last);
   const size_t size = last - first;
@@ -84,24 +92,50 @@ inline bool sortAndSplit(std::vector<Entry>& f, size_t first, size_t last, std::
     root.assign(f.begin() + std::ptrdiff_t(first), f.begin() + std::ptrdiff_t(last));
     Union node;
     for (size_t i = first; i < last; ++i) node.add(f[i].box);
-    f.push_back({povBBoxFromMinMax({node.lo[0], node.lo[1], node.lo[2]}, {node.hi[0], node.hi[1], node.hi[2]}), -1});
+    const int made = int(nodes.size());
+    nodes.push_back({povBBoxFromMinMax({node.lo[0], node.lo[1], node.lo[2]}, {node.hi[0], node.hi[1], node.hi[2]})});
+    for (size_t i = first; i < last; ++i) {
+      if (f[i].object >= 0) parentOf[size_t(f[i].object)] = made;
+      else nodes[size_t(f[i].node)].parent = made;
+    }
+    f.push_back({nodes.back().box, -1, made});
     return true;
   }
-  sortAndSplit(f, first, size_t(bestLoc) + 1, root);
-  sortAndSplit(f, size_t(bestLoc) + 1, last, root);
+  sortAndSplit(f, first, size_t(bestLoc) + 1, root, nodes, parentOf);
+  sortAndSplit(f, size_t(bestLoc) + 1, last, root, nodes, parentOf);
   return false;
 }
 
 }  // namespace pov_bbox_root_detail
 
+// POV-Ray's bounding tree of finite objects with these boxes, in declaration order.
+struct PovBBoxTree {
+  std::vector<pov_bbox_root_detail::Entry> root;  // the root's entries, as the root node holds them
+  // For each object, the boxes of the nodes above it, its parent first and the root last:
+  // Intersect_BBox_Tree reaches the object only through Check_And_Enqueue of each of them
+  // (the root's own box is not tested where planes make the root infinite).
+  std::vector<std::vector<PovBBox>> above;
+};
+
+inline PovBBoxTree povBBoxTree(const std::vector<PovBBox>& finite) {
+  using namespace pov_bbox_root_detail;
+  PovBBoxTree tree;
+  std::vector<Entry> f;
+  std::vector<Node> nodes;
+  std::vector<int> parentOf(finite.size(), -1);
+  for (size_t i = 0; i < finite.size(); ++i) f.push_back({finite[i], int(i)});
+  size_t low = 0, high = f.size();
+  while (!sortAndSplit(f, low, high, tree.root, nodes, parentOf)) low = high, high = f.size();
+  tree.above.resize(finite.size());
+  for (size_t i = 0; i < finite.size(); ++i)
+    for (int n = parentOf[i]; n >= 0; n = nodes[size_t(n)].parent) tree.above[i].push_back(nodes[size_t(n)].box);
+  return tree;
+}
+
 // The root's entries for finite objects with these boxes, in declaration order, as the root
 // node holds them (none for none: the root is then the planes' node itself).
 inline std::vector<pov_bbox_root_detail::Entry> povRootEntries(const std::vector<PovBBox>& finite) {
-  std::vector<pov_bbox_root_detail::Entry> f, root;
-  for (size_t i = 0; i < finite.size(); ++i) f.push_back({finite[i], int(i)});
-  size_t low = 0, high = f.size();
-  while (!pov_bbox_root_detail::sortAndSplit(f, low, high, root)) low = high, high = f.size();
-  return root;
+  return povBBoxTree(finite).root;
 }
 
 // The boxes of those entries.

@@ -136,23 +136,31 @@ bool povBBoxDirHits(const PovBBox& box, const Ray& ray) {
   return tmin < maxd && tmax > mind;
 }
 
-double povBBoxKey(const PovBBox& box, const Ray& ray) {
-  // Rayinfo: the origin and the reciprocal direction as floats.
+PovRayInfo::PovRayInfo(const Ray& ray) {
   const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   const double d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+  for (int a = 0; a < 3; ++a) {
+    num[a] = float(o[a]);
+    nonzero[a] = d[a] != 0.0;
+    positive[a] = d[a] > 0.0;
+    den[a] = nonzero[a] ? float(1.0 / d[a]) : 0.0f;
+  }
+}
+
+double povBBoxKey(const PovBBox& box, const PovRayInfo& ray) {
   double dmin = -kBoundHuge, dmax = kBoundHuge;
   for (int a = 0; a < 3; ++a) {
-    const float num = float(o[a]);
+    const float num = ray.num[a];
     const float ll = box.lowerLeft[a], len = box.lengths[a];
-    if (d[a] == 0.0) {
+    if (!ray.nonzero[a]) {
       if (num < ll || num > len + ll) return kNotEnqueued;
       continue;
     }
-    const float den = float(1.0 / d[a]);
+    const float den = ray.den[a];
     const float near = (ll - num) * den;  // the float products of Check_And_Enqueue
     const float span = len * den;
     double tmin, tmax;
-    if (d[a] > 0.0) {
+    if (ray.positive[a]) {
       tmin = near;
       tmax = tmin + span;
     } else {

@@ -51,8 +51,17 @@ bool povBBoxHolds(const PovBBox& box, const Vec3& p);
 // inside its object, and a float origin beside the ray, so POV-Ray misses slivers there.
 bool povBBoxDirHits(const PovBBox& box, const Ray& ray);
 
+// Bounding tree's Rayinfo: the ray's origin and reciprocal direction as floats, made once for
+// all the boxes one ray meets.
+struct PovRayInfo {
+  explicit PovRayInfo(const Ray& ray);
+  float num[3], den[3];
+  bool nonzero[3], positive[3];
+};
+
 // Check_And_Enqueue's dmin for `ray`: the float depth where the ray enters the box (negative
 // when it starts inside), or +infinity where POV-Ray would not enqueue the box at all.
-double povBBoxKey(const PovBBox& box, const Ray& ray);
+double povBBoxKey(const PovBBox& box, const PovRayInfo& ray);
+inline double povBBoxKey(const PovBBox& box, const Ray& ray) { return povBBoxKey(box, PovRayInfo(ray)); }
 
 }  // namespace pvrt

@@ -124,6 +124,43 @@ TEST(PovBBox, InTheBoundingTreeAnObjectIsReachedOnlyThroughItsLeafsFloatSlabs) {
   EXPECT_TRUE(alone.bvh.primitive(0).intersect(kCorner76, 1e-4, 1e7).has_value());
 }
 
+// And through every node above the leaf: here the green box's node (with the red box and the
+// disc) shares the box's faces x = 0 and z = 0, and a camera whose look_at lies on the edge they
+// meet along sends its centre column exactly along it (blind12 c06: 50 levels off under method
+// 2 before). This ray passes the box's own test and its leaf's slabs but not its node's, so
+// POV-Ray sees past the box.
+TEST(PovBBox, InTheBoundingTreeAnObjectIsReachedOnlyThroughEveryNodeAboveIt) {
+  const Scene scene = buildScene(loadSceneString(R"(<scene>
+    <camera location="1 3 -4" look_at="0 0.5 0" right="1.6 0 0"/>
+    <light_source location="-2 6 -3"/>
+    <plane normal="0 1 0"/>
+    <box corner1="-2 0 -1" corner2="-1 1 0"/>
+    <box corner1="-1 0 -1" corner2="0 1 0"/>
+    <disc center="-0.5 1 -0.5" normal="0 1 0" radius="0.4"/>
+    <triangle p1="0.5 0 -1" p2="2 0 -1" p3="1 0 0.5"/>
+    <sphere center="1 0.5 1" radius="0.5"/>
+    <box corner1="1.5 0 0.5" corner2="2.5 1 1.5"/>
+    <box corner1="-2 0 1" corner2="-1 0.5 2"/>
+    <box corner1="-2 0 1" corner2="-1 0.5 2.5"/>
+  </scene>)",
+                                                 "coplanar.xml"));
+  const Ray along{{1, 3, -4}, {-0x1.939100264cdc1p-3, -0x1.2a7e9f74863c2p-1, 0x1.939100264cdc1p-1}};
+  const uint32_t green = 2;  // after the plane and the red box
+  bool seen = false;
+  for (uint32_t i = 0; i < scene.bvh.size(); ++i) {
+    const Primitive& p = scene.bvh.primitive(i);
+    if (p.object != green) continue;
+    seen = true;
+    EXPECT_TRUE(std::isfinite(povBBoxKey(*p.povBBox(), along)));
+    EXPECT_TRUE(p.intersect(along, 1e-4, 1e7).has_value());
+  }
+  ASSERT_TRUE(seen);
+  uint64_t tests = 0;
+  const auto hit = scene.bvh.closest(along, 1e-4, 1e7, tests);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_NE(scene.bvh.object(hit->primitive), green);
+}
+
 // A ray that enters and leaves a box at one depth is given the side it leaves by: POV-Ray's
 // All_Intersections pushes the exit after the entry, and Find_Intersection keeps the first it
 // pops unless a later one is strictly nearer. Corner 76's ray enters the top and leaves the back
