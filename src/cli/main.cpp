@@ -74,6 +74,8 @@ void checkOptionValues(CLI::App& app) {
         return s.empty() ? "the value is empty (give one, or leave the option out)" : "";
       },
       "");
+  const CLI::Validator required(
+      [](std::string& s) -> std::string { return s.empty() ? "the value is empty" : ""; }, "");
   for (CLI::Option* option : app.get_options()) {
     if (option->get_type_size() == 0) continue;  // a flag
     const std::string type = option->get_type_name();
@@ -82,7 +84,7 @@ void checkOptionValues(CLI::App& app) {
     else if (base == "FLOAT") option->transform(decimal);
     else if (base == "TEXT" && app.get_name() != "golden" &&
              (!app.get_parent() || app.get_parent()->get_name() != "golden"))
-      option->transform(given);
+      option->transform(option->get_required() ? required : given);
   }
   for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) checkOptionValues(*sub);
 }

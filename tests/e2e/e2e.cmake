@@ -310,6 +310,11 @@ foreach(option save-scene schedule stats-json)
       ${dir} --absent ${dir}/out.png -- $<TARGET_FILE:pvrt> render ${PVRT_PAPER1} -W 16 -H 10 -o ${dir}/out.png --${option} "")
   set_tests_properties(e2e.error.render_${option}_empty PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60)
 endforeach()
+set(dir ${PVRT_E2E_DIR}/error/render_scene_empty)
+add_test(NAME e2e.error.render_scene_empty
+  COMMAND ${PVRT_EXPECT_ERROR} 2 "^pvrt: error: scene: the value is empty \\(see --help\\)$"
+    ${dir} --absent ${dir}/out.png -- $<TARGET_FILE:pvrt> render "" -o ${dir}/out.png)
+set_tests_properties(e2e.error.render_scene_empty PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60)
 foreach(share nan -0.5 2)
   pvrt_expect_error(compare_fraction_${share} 2 "^pvrt: error: --max-fraction-over-1: expected a share from 0 to 1, got ${share}"
     ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper2.png
