@@ -273,8 +273,10 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
   const std::optional<ShapeHit> hit = intersectShape(*this, ray, tMin, tMax);
   // POV-Ray tests an object only when the ray meets its float bounding box, which far from
   // the origin leaves slivers of it out (a cylinder 1e5 away: blind11). Testing the box after
-  // a hit gives the same answer, and only the rays that hit pay for it.
-  if (!hit) return hit;
+  // a hit gives the same answer, and only the rays that hit pay for it. Boxes, spheres and
+  // triangles are not tested: POV-Ray skips their boxes there, and a ray lying in a box's face
+  // plane makes the float test 0 * inf, NaN, a miss (blind13).
+  if (!hit || !povTestsBBoxFirst(*this)) return hit;
   const std::optional<PovBBox> box = povBBox();
   if (box && withinFloatBoxReach(*box, ray) && !povBBoxDirHits(*box, ray)) return std::nullopt;
   return hit;
