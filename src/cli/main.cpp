@@ -74,8 +74,8 @@ void checkOptionValues(CLI::App& app) {
         return s.empty() ? "the value is empty (give one, or leave the option out)" : "";
       },
       "");
-  const CLI::Validator required(
-      [](std::string& s) -> std::string { return s.empty() ? "the value is empty" : ""; }, "");
+  const CLI::Validator required([](std::string& s) -> std::string { return s.empty() ? "the value is empty" : ""; },
+                                "");
   for (CLI::Option* option : app.get_options()) {
     if (option->get_type_size() == 0) continue;  // a flag
     const std::string type = option->get_type_name();
