@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/huge_pages.h"
+#include "core/decimal_text.h"
 #include "core/error.h"
 #include "core/error_line.h"
 #include "parallel/threads.h"
@@ -44,6 +45,50 @@ std::optional<std::string> unknownCommand(const CLI::App& app, int argc, char** 
   return std::nullopt;
 }
 
+// Checks of every option of `app` and its commands, by its type, before the option's own
+// (transform() puts them first). Numbers are read in decimal digits, as the scene format reads
+// them (core/decimal_text.h): CLI11 reads integers with strtol in base 0 ("0x10" is 16, "010"
+// is 8, " 8" is 8) and floats with strtold (hexadecimal, leading spaces); the option's range
+// then reads the number as written.
+void checkOptionValues(CLI::App& app) {
+  const CLI::Validator whole(
+      [](std::string& s) -> std::string {
+        const std::optional<std::string> canonical = pvrt::canonicalWholeNumber(s);
+        if (!canonical) return "expected a whole number in decimal digits, got \"" + pvrt::printableName(s) + "\"";
+        s = *canonical;
+        return {};
+      },
+      "");
+  const CLI::Validator decimal(
+      [](std::string& s) -> std::string {
+        if (!pvrt::isDecimalNumber(s)) return "expected a decimal number, got \"" + pvrt::printableName(s) + "\"";
+        if (s.front() == '+') s.erase(0, 1);  // the options' own checks read with from_chars, which takes no '+'
+        return {};
+      },
+      "");
+  // A name or word given empty (`--save-scene "$F"` with F unset) was taken as the option left
+  // out, silently: no file written, the default schedule. `-o ""` already said so. (The golden
+  // commands' options are folders and POV-Ray options, where empty has meanings of its own.)
+  const CLI::Validator given(
+      [](std::string& s) -> std::string {
+        return s.empty() ? "the value is empty (give one, or leave the option out)" : "";
+      },
+      "");
+  const CLI::Validator required([](std::string& s) -> std::string { return s.empty() ? "the value is empty" : ""; },
+                                "");
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_type_size() == 0) continue;  // a flag
+    const std::string type = option->get_type_name();
+    const std::string base = type.substr(0, type.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZ"));
+    if (base == "INT" || base == "UINT") option->transform(whole);
+    else if (base == "FLOAT") option->transform(decimal);
+    else if (base == "TEXT" && app.get_name() != "golden" &&
+             (!app.get_parent() || app.get_parent()->get_name() != "golden"))
+      option->transform(option->get_required() ? required : given);
+  }
+  for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) checkOptionValues(*sub);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -76,6 +121,7 @@ int main(int argc, char** argv) {
   add(pvrt::cli::addAccuracyCommand);
   add(pvrt::cli::addMpiBenchCommand);
   add(pvrt::cli::addGoldenCommand);
+  checkOptionValues(app);
 
   // A word where a command is required that names none (`pvrt rendr`, `pvrt golden rnu`) is
   // said to be one, rather than CLI11's "A subcommand is required".

@@ -43,6 +43,16 @@ namespace pvrt::cli {
 
 namespace {
 
+// --mpi-timeout's seconds, 0 to 1e6 (CLI::Range lets NaN through: it is neither below nor
+// above, and a NaN timeout never ends a job).
+const CLI::Validator kTimeout(
+    [](std::string& v) -> std::string {
+      double x = 0;
+      if (!parsesWhole(v, x) || !(x >= 0 && x <= 1e6)) return "expected seconds from 0 to 1000000, got " + v;
+      return {};
+    },
+    "0..1e6");
+
 // Ctrl-C and SIGTERM stop every stage within a fraction of a second (core/interrupt.h);
 // nothing is written and pvrt exits with 130 (SIGINT) or 143 (SIGTERM).
 // Under mpirun a rank ends at once on SIGINT, SIGTERM (what mpirun sends its ranks when it is
@@ -628,7 +638,7 @@ Command addRenderCommand(CLI::App& app) {
                 "MPI: end the job (exit 75) when a rank has been stopped (SIGSTOP) this many seconds (other nodes: "
                 "when its heartbeats stop) "
                 "(0: never)")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(kTimeout)
       ->capture_default_str();
   c->add_option("--start-col", o->region.startCol,
                 "Render only from this column (POV-Ray's +SC): a pixel number from 1, or a share 0.0-1.0; the "

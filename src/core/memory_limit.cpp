@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
+#include "core/decimal_text.h"
 #include "core/error.h"
 
 namespace pvrt {
@@ -36,16 +38,18 @@ size_t defaultMemoryLimit() { return availableMemory() / 4; }
 
 size_t parseMemorySize(const std::string& text) {
   const auto bad = [&] {
-    return Error(ExitCode::Usage, "pvrt: --memory-limit: expected a size such as 2G, 512M or 100000K (bytes "
-                                  "without a suffix), got \"" + text + "\"");
+    return Error(ExitCode::Usage,
+                 "pvrt: error: --memory-limit: expected a size such as 2G, 512M or 100000K (bytes "
+                 "without a suffix), got \"" +
+                     text + "\"");
   };
-  size_t used = 0;
+  // The number in decimal digits, as every number pvrt reads (stod took "0x100M" as 256M).
+  const bool suffixed = !text.empty() && std::isalpha(static_cast<unsigned char>(text.back()));
+  const size_t used = suffixed ? text.size() - 1 : text.size();
+  const std::string number = text.substr(0, used);
+  if (!isDecimalNumber(number)) throw bad();
   double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (...) {
-    throw bad();
-  }
+  std::from_chars(number.data(), number.data() + number.size(), value);
   std::string suffix = text.substr(used);
   double scale = 1;
   if (suffix.size() == 1) {

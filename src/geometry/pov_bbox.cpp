@@ -106,6 +106,10 @@ PovBBox povRecomputed(const PovBBox& box, const Affine& toWorld) {
 
 std::optional<PovBBox> povBBoxOf(const Primitive& p) { return std::visit(BoxOfShape{p}, p.shape); }
 
+bool povTestsBBoxFirst(const Primitive& p) {
+  return std::holds_alternative<PovConeShape>(p.shape) || std::holds_alternative<PovDiscShape>(p.shape);
+}
+
 bool povBBoxHolds(const PovBBox& box, const Vec3& p) {
   const double c[3] = {p.x, p.y, p.z};
   for (int a = 0; a < 3; ++a)

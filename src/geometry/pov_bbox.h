@@ -41,6 +41,12 @@ PovBBox povSphereBBox(const Vec3& center, double radius);
 // lone triangles. None for planes (unbounded) and for the shapes pvrt holds otherwise.
 std::optional<PovBBox> povBBoxOf(const Primitive& p);
 
+// Whether POV-Ray tests the object's float box (povBBoxDirHits) before the object itself:
+// ObjectBase::Intersect_BBox does, but Box, Sphere, Triangle (so SmoothTriangle) and Plane
+// override it to return true (boxes.cpp, spheres.cpp, triangle.cpp, planes.cpp). Of the
+// shapes with a box here, only cones, cylinders and discs are tested.
+bool povTestsBBoxFirst(const Primitive& p);
+
 // Inside_BBox: whether point p lies in the box (its far corner summed in double).
 bool povBBoxHolds(const PovBBox& box, const Vec3& p);
 

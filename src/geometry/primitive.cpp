@@ -263,13 +263,6 @@ std::optional<ShapeHit> intersectShape(const Primitive& p, const Ray& ray, doubl
 
 // Whether the ray's origin and the box lie within kPovFloatReach, where pvrt follows POV-Ray's
 // float box test (geometry/pov_bbox.h): beyond, it cuts whole pieces off objects.
-// Whether POV-Ray 3.7 tests the object's float box before the object itself
-// (ObjectBase::Intersect_BBox): its boxes, spheres, planes and triangles override that test
-// to pass every ray (boxes.cpp, spheres.cpp, triangle.cpp); cylinders, cones and discs keep it.
-bool povTestsBoxFirst(const Shape& shape) {
-  return std::holds_alternative<PovConeShape>(shape) || std::holds_alternative<PovDiscShape>(shape);
-}
-
 bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
   if (std::fabs(ray.origin.x) + std::fabs(ray.origin.y) + std::fabs(ray.origin.z) >= kPovFloatReach) return false;
   for (int a = 0; a < 3; ++a)
@@ -286,10 +279,11 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
   // which far from the origin leaves slivers of it out (a cylinder 1e5 away: blind11). In its
   // bounding tree every finite object's box is first a leaf that Check_And_Enqueue may turn
   // away, in float depths of its own: a ray along a box's edge, which the box's own test hits,
-  // can fall outside them (blind12 c22). Testing the boxes after a hit gives the same answer,
-  // and only the rays that hit pay for it.
+  // can fall outside them (blind12 c22). Boxes, spheres and triangles skip the first test (a
+  // ray lying in a box's face plane made it 0 * inf, NaN, a miss: blind13). Testing the boxes
+  // after a hit gives the same answer, and only the rays that hit pay for it.
   if (!hit) return hit;
-  const bool boxFirst = povTestsBoxFirst(shape);
+  const bool boxFirst = povTestsBBoxFirst(*this);
   if (!boxFirst && !povTreeLeaf) return hit;
   const std::optional<PovBBox> box = povBBox();
   if (box && withinFloatBoxReach(*box, ray) &&

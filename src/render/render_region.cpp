@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/decimal_text.h"
 #include "core/error.h"
 
 namespace pvrt {
@@ -22,7 +23,10 @@ int bound(const std::string& value, int side, bool end, const char* option) {
   char* stop = nullptr;
   errno = 0;
   const double v = share ? std::strtod(begin, &stop) : double(std::strtol(begin, &stop, 10));
-  if (value.empty() || stop != begin + value.size() || errno != 0 || !std::isfinite(v))
+  // Decimal digits only, as every number pvrt reads: strtol and strtod alone also take " 2",
+  // "+2" and a hexadecimal share ("0x0.8p0").
+  const bool decimal = share ? isDecimalNumber(value) : canonicalWholeNumber(value).has_value();
+  if (!decimal || stop != begin + value.size() || errno != 0 || !std::isfinite(v))
     throw bad(option, value, "expected a pixel number (1, 2, ...) or a share of the image from 0.0 to 1.0");
   if (share) {
     if (v < 0 || v > 1) throw bad(option, value, "a share of the image must lie from 0.0 to 1.0");

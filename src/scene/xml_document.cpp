@@ -385,8 +385,24 @@ static MismatchedClose firstMismatchedClose(std::string_view s) {
   return {};
 }
 
+bool closesOnlyOpenElements(std::string_view bytes) { return firstMismatchedClose(bytes).text.empty(); }
+
+// What a mismatched closing tag is said to be, after the parser's error name.
+static std::string mismatchHint(const MismatchedClose& which) {
+  if (which.text.ends_with("closes no element")) return ": " + which.text + " (a closing tag too many)";
+  const std::string named = which.text.empty() ? "" : which.text + ": ";
+  return ": " + named + "an element not closed, or closed with another name";
+}
+
 void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name) {
-  if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) return;
+  if (doc.Parse(bytes.data(), bytes.size()) == tinyxml2::XML_SUCCESS) {
+    // tinyxml2 stops without an error at a closing tag outside every element (</scene> twice),
+    // so that what follows it, objects included, was silently dropped (blind13).
+    if (const MismatchedClose which = firstMismatchedClose(bytes); !which.text.empty())
+      throw sceneError({name, which.line}, "xml",
+                       "malformed XML (XML_ERROR_MISMATCHED_ELEMENT" + mismatchHint(which) + ")");
+    return;
+  }
   int line = std::max(1, doc.ErrorLineNum());
   std::string what;
   switch (doc.ErrorID()) {
@@ -421,8 +437,7 @@ void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const 
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) {
         const MismatchedClose which = firstMismatchedClose(bytes);
         if (!which.text.empty()) line = which.line;
-        const std::string named = which.text.empty() ? "" : which.text + ": ";
-        hint = ": " + named + "an element not closed, or closed with another name";
+        hint = mismatchHint(which);
       } else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING)  // also a file cut short
         hint = ": not XML, or the file ends before its elements are closed";
       else if (doc.ErrorID() == tinyxml2::XML_ERROR_PARSING_DECLARATION)

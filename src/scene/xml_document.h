@@ -72,4 +72,9 @@ void parseDocument(tinyxml2::XMLDocument& doc, std::string_view bytes, const std
 // parseDocument() for bytes that checkSceneText() has passed.
 void parseCheckedText(tinyxml2::XMLDocument& doc, std::string_view bytes, const std::string& name);
 
+// Whether every closing tag of `bytes`, a whole document, closes the element open innermost:
+// tinyxml2 parses a document with one outside every element (</scene> twice) as if it ended
+// there, without an error.
+bool closesOnlyOpenElements(std::string_view bytes);
+
 }  // namespace pvrt

@@ -1050,7 +1050,9 @@ std::optional<SceneDesc> parseInPieces(std::string_view bytes, const std::string
     return std::nullopt;
   tinyxml2::XMLDocument skeleton;
   const std::string text = skeletonOf(bytes, *split);
-  if (skeleton.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS) return std::nullopt;
+  // A closing tag too many after the root is no error to tinyxml2: the whole parse says so.
+  if (skeleton.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS || !closesOnlyOpenElements(text))
+    return std::nullopt;
   std::optional<SceneDesc> s =
       Loader(name).loadPieces(skeleton, bytes, *split, lineFeeds.empty() ? release : nullptr);
   if (!s) return std::nullopt;

@@ -283,6 +283,38 @@ pvrt_expect_error(generate_radius_zero 2 "^pvrt: error: --radius-min: expected a
   ABSENT g.xml ARGS generate -o <DIR>/g.xml --radius-min 0)
 pvrt_expect_error(render_time_budget_inf 2 "^pvrt: error: --time-budget must be a positive number of seconds, got inf$"
   ARGS render ${PVRT_PAPER1} --time-budget inf)
+# Numbers are decimal digits, as in the scene format: CLI11 alone read "0x10" as 16, "010" as 8
+# and " 8" as 8 (strtol in base 0), and hexadecimal floats (blind13).
+pvrt_expect_error(render_spp_hex 2 "^pvrt: error: --spp: expected a whole number in decimal digits, got \"0x10\" \\(see --help\\)$"
+  ARGS render ${PVRT_PAPER1} --spp 0x10)
+pvrt_expect_error(render_width_space 2 "^pvrt: error: --width: expected a whole number in decimal digits, got \" 8\""
+  ARGS render ${PVRT_PAPER1} -W " 8")
+pvrt_expect_error(render_spp_octal 2 "^pvrt: error: --spp must be a perfect square .*, got 10 "
+  ARGS render ${PVRT_PAPER1} --spp 010)
+pvrt_expect_error(render_threshold_hex 2 "^pvrt: error: --aa-threshold: expected a decimal number, got \"0x0\\.1p0\""
+  ARGS render ${PVRT_PAPER1} --spp 9 --aa-threshold 0x0.1p0)
+pvrt_expect_error(generate_spheres_exponent 2 "^pvrt: error: --spheres: expected a whole number in decimal digits, got \"1e3\""
+  ABSENT g.xml ARGS generate -o <DIR>/g.xml --spheres 1e3)
+pvrt_expect_error(render_mpi_timeout_nan 2 "^pvrt: error: --mpi-timeout: expected seconds from 0 to 1000000, got nan"
+  ARGS render ${PVRT_PAPER1} --mpi-timeout nan)
+pvrt_expect_error(render_memory_limit_hex 2 "^pvrt: error: --memory-limit: expected a size such as 2G, 512M or 100000K \\(bytes without a suffix\\), got \"0x100M\"$"
+  ARGS render ${PVRT_PAPER1} --memory-limit 0x100M)
+pvrt_expect_error(render_region_space 2 "^pvrt: error: --start-row  2: expected a pixel number"
+  ARGS render ${PVRT_PAPER1} -W 16 -H 10 --start-row " 2")
+# An empty name was taken as the option left out: no file, and no word of it (blind13). The
+# empty argument is given to add_test itself (a function's ARGN drops empty items).
+foreach(option save-scene schedule stats-json)
+  set(dir ${PVRT_E2E_DIR}/error/render_${option}_empty)
+  add_test(NAME e2e.error.render_${option}_empty
+    COMMAND ${PVRT_EXPECT_ERROR} 2 "^pvrt: error: --${option}: the value is empty \\(give one, or leave the option out\\)"
+      ${dir} --absent ${dir}/out.png -- $<TARGET_FILE:pvrt> render ${PVRT_PAPER1} -W 16 -H 10 -o ${dir}/out.png --${option} "")
+  set_tests_properties(e2e.error.render_${option}_empty PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60)
+endforeach()
+set(dir ${PVRT_E2E_DIR}/error/render_scene_empty)
+add_test(NAME e2e.error.render_scene_empty
+  COMMAND ${PVRT_EXPECT_ERROR} 2 "^pvrt: error: scene: the value is empty \\(see --help\\)$"
+    ${dir} --absent ${dir}/out.png -- $<TARGET_FILE:pvrt> render "" -o ${dir}/out.png)
+set_tests_properties(e2e.error.render_scene_empty PROPERTIES LABELS "e2e;bad-input" TIMEOUT 60)
 foreach(share nan -0.5 2)
   pvrt_expect_error(compare_fraction_${share} 2 "^pvrt: error: --max-fraction-over-1: expected a share from 0 to 1, got ${share}"
     ABSENT d.png ARGS compare ${PROJECT_SOURCE_DIR}/reference/paper1.png ${PROJECT_SOURCE_DIR}/reference/paper2.png

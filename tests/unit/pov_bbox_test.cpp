@@ -174,6 +174,32 @@ TEST(PovBBox, ABoxMetAlongAnEdgeShowsTheSideTheRayLeavesBy) {
   EXPECT_EQ(n.y, 0.0);
 }
 
+// blind13: POV-Ray's Box, Sphere and Triangle skip the float box test (their Intersect_BBox
+// returns true). A ray lying in a box's face plane, x = 0 with no x direction (the centre
+// column of a picture whose camera is on that plane), made pvrt's test (0 - 0) * (1 / 0), NaN,
+// and drop the hit: the box showed the wall behind it where POV-Ray shows the box.
+TEST(PovBBox, BoxesSpheresAndTrianglesAreNotCutByTheirFloatBox) {
+  const Scene scene = buildScene(loadSceneString(
+      R"(<scene><box corner1="-1 0 0" corner2="0 1 1"/><sphere center="5 0 0" radius="1"/>
+         <triangle p1="9 0 0" p2="11 0 0" p3="10 1 0"/><cylinder base="0 0 5" cap="0 1 5" radius="1"/></scene>)",
+      "face.xml"));
+  std::optional<Primitive> box;
+  for (uint32_t i = 0; i < 4; ++i) {
+    const Primitive p = scene.bvh.primitive(i);
+    EXPECT_EQ(povTestsBBoxFirst(p), std::holds_alternative<PovConeShape>(p.shape)) << p.shape.index();
+    if (std::holds_alternative<BoxShape>(p.shape)) box = p;
+  }
+  ASSERT_TRUE(box.has_value());
+  const Ray inFace{{0, 0.5, -5}, {0, 0, 1}};
+  ASSERT_TRUE(povBBoxOf(*box).has_value());
+  EXPECT_FALSE(povBBoxDirHits(*povBBoxOf(*box), inFace));  // the NaN, as POV-Ray's test would give
+  const std::optional<ShapeHit> hit = box->intersect(inFace, 1e-4, 1e7);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->t, 5.0);
+  uint64_t tests = 0;
+  EXPECT_TRUE(scene.bvh.closest(inFace, 1e-4, 1e7, tests).has_value());
+}
+
 // A red box from y = 0 to 1 and a green disc lying on its top face, both seen straight down
 // at the disc's centre: the two meet the ray at exactly one depth.
 std::string boxAndDisc(bool discFirst, int lights) {

@@ -40,6 +40,11 @@ TEST(RenderRegion, RefusesWhatIsNotARegionOfTheImage) {
       {{"", "", "1.5", ""}, "--start-row 1.5: a share of the image must lie from 0.0 to 1.0"},
       {{"", "", "", "ten"}, "--end-row ten: expected a pixel number"},
       {{"", "", "", "3x"}, "--end-row 3x: expected a pixel number"},
+      // Decimal digits only, as every number pvrt reads (strtol took " 2" and "+2" as 2).
+      {{" 2", "", "", ""}, "--start-col  2: expected a pixel number"},
+      {{"+2", "", "", ""}, "--start-col +2: expected a pixel number"},
+      {{"", "", "0x0.8p0", ""}, "--start-row 0x0.8p0: expected a pixel number"},
+      {{"", "", " 0.5", ""}, "--start-row  0.5: expected a pixel number"},
       {{"10", "5", "", ""}, "columns 10 to 5 hold no pixel"},
       {{"", "", "0.5", "0.5"}, "rows 21 to 20 hold no pixel"},
   };

@@ -196,6 +196,26 @@ TEST(XmlBadInput, AMismatchedClosingTagIsNamedWithItsLine) {
             message(3, "<finish> of line 2 is closed by </sphere> on line 3"));
 }
 
+// tinyxml2 ends a document without an error at a closing tag outside every element, so that
+// the objects after a second </scene> were dropped and the scene rendered without them.
+TEST(XmlBadInput, AClosingTagOutsideEveryElementIsAnError) {
+  const std::string tooMany = ": error: xml: malformed XML (XML_ERROR_MISMATCHED_ELEMENT: ";
+  EXPECT_EQ(errorOf("<scene>\n</scene>\n</scene>\n"),
+            "t.xml:3" + tooMany + "</scene> on line 3 closes no element (a closing tag too many))");
+  EXPECT_EQ(errorOf("<scene>\n<camera/>\n</scene>\n</scene>\n<sphere center=\"0 0 0\" radius=\"1\"/>\n"),
+            "t.xml:4" + tooMany + "</scene> on line 4 closes no element (a closing tag too many))");
+  EXPECT_EQ(errorOf("<scene/>\n</sphere>\n"),
+            "t.xml:2" + tooMany + "</sphere> on line 2 closes no element (a closing tag too many))");
+  // Before the root, it hid the <scene> that follows ("the file has no <scene> element").
+  EXPECT_EQ(errorOf("</scene>\n<scene/>\n"),
+            "t.xml:1" + tooMany + "</scene> on line 1 closes no element (a closing tag too many))");
+  // A big file is read in pieces (scene/xml_split.h): the part after the pieces is checked too.
+  std::string big = "<scene>\n";
+  for (int i = 0; i < 50; ++i) big += "<sphere center=\"0 0 0\" radius=\"1\"/>\n";
+  EXPECT_EQ(errorOf(big + "</scene>\n</scene>\n", 256),
+            "t.xml:53" + tooMany + "</scene> on line 53 closes no element (a closing tag too many))");
+}
+
 // tinyxml2 reads any <?name ...?> as a declaration; only <?xml ...?>, first, is one.
 TEST(XmlBadInput, ProcessingInstructionsAreRefusedByName) {
   EXPECT_EQ(errorOf("<?xml version=\"1.0\"?>\n<?xml-stylesheet href=\"a.css\"?>\n<scene/>"),
