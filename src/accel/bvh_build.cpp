@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <numeric>
@@ -906,8 +907,18 @@ void Bvh::makePovTieRoot() {
     objects.emplace_back(it.object, *box);
   }
   std::sort(objects.begin(), objects.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (size_t k = 1; k < objects.size(); ++k)
-    if (objects[k].first == objects[k - 1].first) return;  // one object of several primitives
+  // A mesh's triangles all carry the mesh's box: one leaf. Any other object of several
+  // primitives has no box of its own that pvrt knows.
+  const auto sameBox = [](const PovBBox& x, const PovBBox& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  size_t kept = 0;
+  for (size_t k = 0; k < objects.size(); ++k) {
+    if (kept > 0 && objects[k].first == objects[kept - 1].first) {
+      if (!sameBox(objects[k].second, objects[kept - 1].second)) return;
+      continue;
+    }
+    objects[kept++] = objects[k];
+  }
+  objects.resize(kept);
   std::vector<PovBBox> finite;
   for (const auto& [object, box] : objects) {
     povTieObjects_.push_back(object);

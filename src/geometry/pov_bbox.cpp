@@ -107,7 +107,9 @@ PovBBox povRecomputed(const PovBBox& box, const Affine& toWorld) {
 std::optional<PovBBox> povBBoxOf(const Primitive& p) { return std::visit(BoxOfShape{p}, p.shape); }
 
 bool povTestsBBoxFirst(const Primitive& p) {
-  return std::holds_alternative<PovConeShape>(p.shape) || std::holds_alternative<PovDiscShape>(p.shape);
+  return std::holds_alternative<PovConeShape>(p.shape) || std::holds_alternative<PovDiscShape>(p.shape) ||
+         std::holds_alternative<PovMeshTriangleShape>(p.shape) ||
+         std::holds_alternative<PovMeshSmoothTriangleShape>(p.shape);
 }
 
 bool povBBoxHolds(const PovBBox& box, const Vec3& p) {

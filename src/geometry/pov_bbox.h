@@ -38,13 +38,15 @@ PovBBox povSphereBBox(const Vec3& center, double radius);
 
 // The box POV-Ray keeps for the object whose only primitive is `p`, where pvrt holds that
 // primitive in POV-Ray's own form: untransformed spheres, boxes, discs, cylinders, cones and
-// lone triangles. None for planes (unbounded) and for the shapes pvrt holds otherwise.
+// lone triangles. None for planes (unbounded) and for the shapes pvrt holds otherwise; a
+// mesh's triangles are given their mesh's box when the scene is built (Primitive::povBox).
 std::optional<PovBBox> povBBoxOf(const Primitive& p);
 
 // Whether POV-Ray tests the object's float box (povBBoxDirHits) before the object itself:
 // ObjectBase::Intersect_BBox does, but Box, Sphere, Triangle (so SmoothTriangle) and Plane
 // override it to return true (boxes.cpp, spheres.cpp, triangle.cpp, planes.cpp). Of the
-// shapes with a box here, only cones, cylinders and discs are tested.
+// shapes with a box here, cones, cylinders, discs and a mesh's triangles (with the mesh's box)
+// are tested.
 bool povTestsBBoxFirst(const Primitive& p);
 
 // Inside_BBox: whether point p lies in the box (its far corner summed in double).

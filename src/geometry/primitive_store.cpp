@@ -24,7 +24,7 @@ PrimitiveRecord PrimitiveStore::compact(Primitive&& p, std::vector<Primitive>& o
     r.kind = PrimitiveRecord::Kind::Plane;
   } else {
     r.other = uint32_t(others.size());
-    p.povBox = povBBoxOf(p);
+    if (!p.povBoxKnown) p.povBox = povBBoxOf(p);  // a mesh's triangles come with the mesh's (render/scene.cpp)
     p.povBoxKnown = true;
     others.push_back(std::move(p));
   }

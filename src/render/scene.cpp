@@ -158,17 +158,42 @@ class PrimitiveBuilder {
       trans = share(composed.toTransform());
     }
     PovMeshBuilder mesh;
+    size_t made = 0;
     for (const auto& t : m.triangles)
-      if (add(mesh.triangle(t.p1, t.p2, t.p3), false)) primitive().transform = trans;
+      if (add(mesh.triangle(t.p1, t.p2, t.p3), false)) primitive().transform = trans, ++made;
     for (const auto& t : m.smoothTriangles) {
       bool smooth = false;
       PovMeshSmoothTriangleShape shape = mesh.smoothTriangle(t.p1, t.n1, t.p2, t.n2, t.p3, t.n3, smooth);
-      const bool made = smooth ? add(shape, false) : add(PovMeshTriangleShape(shape), false);
-      if (made) primitive().transform = trans;
+      if (smooth ? add(shape, false) : add(PovMeshTriangleShape(shape), false)) primitive().transform = trans, ++made;
     }
+    if (made > 0) meshBox(made);
   }
 
  private:
+  // The box POV-Ray keeps for a mesh, given to each of its `count` triangles (the last ones
+  // made): Mesh::Compute_BBox, the range of its triangles' float corners (those its parser
+  // kept), then Mesh::Transform's Recompute_BBox at each transform step in turn, not once
+  // with the steps composed.
+  void meshBox(size_t count) {
+    std::vector<Primitive>& made = *out_.grow;
+    constexpr double kBoundHuge = 2.0e10;  // POV-Ray's BOUND_HUGE
+    Vec3 mins(kBoundHuge), maxs(-kBoundHuge);
+    bool any = false;
+    for (size_t k = made.size() - count; k < made.size(); ++k) {
+      const auto* t = std::get_if<PovMeshTriangleShape>(&made[k].shape);
+      if (!t) t = std::get_if<PovMeshSmoothTriangleShape>(&made[k].shape);
+      if (!t || t->axis == PovMeshTriangleShape::kNever) continue;
+      any = true;
+      for (int i = 0; i < 3; ++i) mins = vmin(mins, t->corner(i)), maxs = vmax(maxs, t->corner(i));
+    }
+    if (!any) return;
+    PovBBox box = povBBoxFromMinMax(mins, maxs);
+    for (const TransformStep& step : steps_.steps) box = povRecomputed(box, povStep(step).toTransform().toWorld);
+    for (size_t k = made.size() - count; k < made.size(); ++k) {
+      made[k].povBox = box;
+      made[k].povBoxKnown = true;
+    }
+  }
   void povCone(PovConePlacement placed) {
     for (const TransformStep& step : steps_.steps) placed.transform.then(povStep(step));
     if (add(placed.shape, false)) primitive().transform = share(placed.transform.toTransform());

@@ -200,6 +200,32 @@ TEST(PovBBox, BoxesSpheresAndTrianglesAreNotCutByTheirFloatBox) {
   EXPECT_TRUE(scene.bvh.closest(inFace, 1e-4, 1e7, tests).has_value());
 }
 
+// A mesh keeps ObjectBase::Intersect_BBox, with the box of its whole mesh (Mesh::Compute_BBox:
+// the range of its corners, no padding), which pvrt now gives each of its triangles. A ray
+// lying in the plane of the box's face x = 0 makes the float test (0 - 0) * (1 / 0), NaN, and
+// POV-Ray misses the mesh there (blind13: a cube mesh beside the camera's centre column,
+// 106 channels off before); a ray inside the box meets it.
+TEST(PovBBox, AMeshIsTestedThroughTheBoxOfTheWholeMesh) {
+  const Scene scene = buildScene(loadSceneString(R"(<scene><light_source location="-3 6 -5"/><mesh>
+      <triangle p1="-1 0 0" p2="0 0 0" p3="0 1 0"/><triangle p1="-1 0 0" p2="0 1 0" p3="-1 1 0"/>
+      <triangle p1="-1 0 1" p2="0 0 1" p3="0 1 1"/></mesh></scene>)",
+                                                 "mesh.xml"));
+  ASSERT_EQ(scene.bvh.size(), 3u);
+  for (uint32_t i = 0; i < 3; ++i) {
+    const std::optional<PovBBox> box = scene.bvh.primitive(i).povBBox();
+    ASSERT_TRUE(box.has_value());
+    EXPECT_EQ(box->lowerLeft[0], -1.0f);
+    EXPECT_EQ(box->lengths[0], 1.0f);
+    EXPECT_EQ(box->lengths[2], 1.0f);  // the box of all three triangles, not of one
+    EXPECT_TRUE(povTestsBBoxFirst(scene.bvh.primitive(i)));
+  }
+  const Ray inFace{{0, 0.5, -5}, {0, 0, 1}}, inside{{-0.25, 0.5, -5}, {0, 0, 1}};
+  EXPECT_FALSE(povBBoxDirHits(*scene.bvh.primitive(0).povBBox(), inFace));
+  uint64_t tests = 0;
+  EXPECT_FALSE(scene.bvh.closest(inFace, 1e-4, 1e7, tests).has_value());
+  EXPECT_TRUE(scene.bvh.closest(inside, 1e-4, 1e7, tests).has_value());
+}
+
 // A red box from y = 0 to 1 and a green disc lying on its top face, both seen straight down
 // at the disc's centre: the two meet the ray at exactly one depth.
 std::string boxAndDisc(bool discFirst, int lights) {
