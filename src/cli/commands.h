@@ -43,6 +43,18 @@ inline const CLI::Validator kPositive(
     },
     "POSITIVE");
 
+// A number from `lo` to `hi`, NaN refused (CLI::Range lets it through: it is neither below nor
+// above); `what` names the range in the message, "expected <what>, got <value>".
+inline CLI::Validator numberFrom(double lo, double hi, const std::string& what, const std::string& range) {
+  return CLI::Validator(
+      [=](std::string& v) -> std::string {
+        double x = 0;
+        if (!parsesWhole(v, x) || !(x >= lo && x <= hi)) return "expected " + what + ", got " + v;
+        return {};
+      },
+      range);
+}
+
 Command addRenderCommand(CLI::App& app);
 Command addGenerateCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);

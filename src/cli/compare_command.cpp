@@ -15,14 +15,7 @@ namespace pvrt::cli {
 
 namespace {
 
-// A share from 0 to 1 (CLI::Range lets NaN through: it is neither below nor above).
-const CLI::Validator kShare(
-    [](std::string& v) -> std::string {
-      double x = 0;
-      if (!parsesWhole(v, x) || !(x >= 0 && x <= 1)) return "expected a share from 0 to 1, got " + v;
-      return {};
-    },
-    "0..1");
+const CLI::Validator kShare = numberFrom(0, 1, "a share from 0 to 1", "0..1");
 
 struct CompareOptions {
   std::string a, b, diff;

@@ -43,15 +43,8 @@ namespace pvrt::cli {
 
 namespace {
 
-// --mpi-timeout's seconds, 0 to 1e6 (CLI::Range lets NaN through: it is neither below nor
-// above, and a NaN timeout never ends a job).
-const CLI::Validator kTimeout(
-    [](std::string& v) -> std::string {
-      double x = 0;
-      if (!parsesWhole(v, x) || !(x >= 0 && x <= 1e6)) return "expected seconds from 0 to 1000000, got " + v;
-      return {};
-    },
-    "0..1e6");
+// --mpi-timeout's seconds (a NaN timeout would never end a job).
+const CLI::Validator kTimeout = numberFrom(0, 1e6, "seconds from 0 to 1000000", "0..1e6");
 
 // Ctrl-C and SIGTERM stop every stage within a fraction of a second (core/interrupt.h);
 // nothing is written and pvrt exits with 130 (SIGINT) or 143 (SIGTERM).
