@@ -303,14 +303,9 @@ void OutputFiles::commit() {
         st.st_ino != p->stagedIno)
       throw cannotWrite(p->path, "its temporary file " + shown(p->staged) + " was replaced or removed");
   }
-  // Renames first (they cannot fail half-way), then the streams, which cannot be taken back.
-  for (const auto& p : planned_) {
-    if (p->kind != Planned::Kind::File) continue;
-    if (std::rename(p->staged.c_str(), p->target.c_str()) != 0) throw cannotWrite(p->path, std::strerror(errno));
-    p->committed = true;
-    unregisterStaged(p->slot);
-    p->slot = -1;
-  }
+  // The streams first, then the renames. A stream is what fails in practice (a reader gone, a
+  // full device), and then no file the user had has been replaced yet; a rename fails only
+  // when its folder changed under the run, and what a stream's reader got was whole anyway.
   for (const auto& p : planned_) {
     if (p->kind == Planned::Kind::File) continue;
     std::string why;
@@ -324,6 +319,13 @@ void OutputFiles::commit() {
     ::unlink(p->staged.c_str());
     p->committed = true;
     if (!why.empty()) throw cannotWrite(p->path, why);
+  }
+  for (const auto& p : planned_) {
+    if (p->kind != Planned::Kind::File) continue;
+    if (std::rename(p->staged.c_str(), p->target.c_str()) != 0) throw cannotWrite(p->path, std::strerror(errno));
+    p->committed = true;
+    unregisterStaged(p->slot);
+    p->slot = -1;
   }
 }
 

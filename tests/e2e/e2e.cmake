@@ -230,7 +230,7 @@ set_tests_properties(e2e.jitter_any_c PROPERTIES LABELS e2e TIMEOUT 300)
 
 # Outputs (core/output_files.h): temporaries no planted link can redirect, links, FIFOs,
 # standard output, nothing committed when the run fails, paths checked before any work.
-foreach(case planted_links symlink fifo dev_stdout dash not_committed permissions unwritable newline_name)
+foreach(case planted_links symlink fifo dev_stdout dash not_committed stream_fails permissions unwritable newline_name)
   add_test(NAME e2e.outputs.${case}
     COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/e2e/outputs.sh ${case} $<TARGET_FILE:pvrt> ${PVRT_PAPER1}
             ${PVRT_E2E_DIR}/outputs/${case})

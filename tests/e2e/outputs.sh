@@ -10,6 +10,8 @@
 #   dash            -o - writes the PNG to standard output; pvrt's own lines go to standard error
 #   not_committed   a run that fails at its output (a directory) leaves no saved scene, no
 #                   load map and no temporary
+#   stream_fails    a stream that cannot be written (/dev/full) fails the run before any file
+#                   is replaced: out.png and saved.xml keep what they held, no temporary left
 #   permissions     a replaced file keeps its permissions
 #   unwritable      an output folder that cannot be written fails before the render (as
 #                   user nobody: root writes anywhere; skipped without setpriv)
@@ -82,6 +84,22 @@ not_committed)
   [ $rc -eq 4 ] || bad "exit code $rc, expected 4"
   grep -q 'cannot write "out.png": it is a directory' err.txt || bad "message: $(cat err.txt)"
   [ "$(ls -A)" = "$(printf 'err.txt\nout.png\nplain.png')" ] || bad "left behind: $(ls -A)"
+  ;;
+stream_fails)
+  [ -c /dev/full ] || { echo "skipped: no /dev/full"; exit 77; }
+  sentinel out.png && cp out.png out.expected && sentinel saved.xml && cp saved.xml saved.expected
+  "$pvrt" render "$scene" -o out.png --save-scene saved.xml --stats-json /dev/full "${size[@]}" 2>err.txt
+  rc=$?
+  [ $rc -eq 4 ] || bad "exit code $rc, expected 4"
+  grep -q 'cannot write "/dev/full"' err.txt || bad "message: $(cat err.txt)"
+  cmp -s out.png out.expected || bad "out.png was replaced by a run that failed"
+  cmp -s saved.xml saved.expected || bad "saved.xml was replaced by a run that failed"
+  "$pvrt" render "$scene" -o /dev/full --save-scene saved.xml "${size[@]}" 2>err.txt
+  rc=$?
+  [ $rc -eq 4 ] || bad "-o /dev/full: exit code $rc, expected 4"
+  cmp -s saved.xml saved.expected || bad "saved.xml was replaced when -o /dev/full failed"
+  left=$(ls -A | grep -v -x -e err.txt -e out.png -e out.expected -e saved.xml -e saved.expected -e plain.png)
+  [ -z "$left" ] || bad "left behind: $left"
   ;;
 permissions)
   sentinel out.png && chmod 640 out.png
