@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/prefault.h"
+#include "parallel/median.h"
 #include "parallel/parallel_for.h"
 #include "parallel/threads.h"
 
@@ -31,14 +32,26 @@ namespace {
 // The lower median of the bounded objects' sizes (0 when there are none): what the
 // scene's objects are like, whatever one sky sphere or a speck of dust is like.
 // `objects` holds each object's sizeOf() its box, or a negative number when it has none.
-double typicalSize(const std::vector<double>& objects) {
-  std::vector<double> sizes;
-  sizes.reserve(objects.size());
-  for (const double size : objects)
-    if (size >= 0) sizes.push_back(size);
-  if (sizes.empty()) return 0;
-  const auto mid = sizes.begin() + std::ptrdiff_t((sizes.size() - 1) / 2);
-  std::nth_element(sizes.begin(), mid, sizes.end());
+// Found on every thread, a block of objects each (`blocks`).
+double typicalSize(const std::vector<double>& objects, const Blocks& blocks, int threads) {
+  std::vector<std::vector<double>> sizes(blocks.count);
+  std::vector<char> unordered(blocks.count, 0);  // a -0, which parallelNth cannot order
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    for (size_t i = lo; i < hi; ++i)
+      if (objects[i] >= 0) {  // not NaN
+        sizes[b].push_back(objects[i]);
+        unordered[b] |= char(std::signbit(objects[i]));
+      }
+  });
+  size_t n = 0;
+  for (const std::vector<double>& part : sizes) n += part.size();
+  if (n == 0) return 0;
+  if (std::find(unordered.begin(), unordered.end(), 1) == unordered.end())
+    return parallelNth<double>(sizes, (n - 1) / 2, threads);
+  std::vector<double> all;
+  for (const std::vector<double>& part : sizes) all.insert(all.end(), part.begin(), part.end());
+  const auto mid = all.begin() + std::ptrdiff_t((n - 1) / 2);
+  std::nth_element(all.begin(), mid, all.end());
   return *mid;
 }
 
@@ -257,7 +270,7 @@ size_t primitiveCount(const ObjectDesc& o) {
   return count.made;
 }
 
-EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
+EffectSet deriveEffects(const Scene& s, const SceneDesc& desc, int threads) {
   EffectSet e = 0;
   bool shadowCaster = false;
   for (const Light& l : s.lights) {
@@ -266,14 +279,22 @@ EffectSet deriveEffects(const Scene& s, const SceneDesc& desc) {
     if (l.spot || (l.fadePower > 0 && l.fadeDistance != 0)) e |= kLightShaping;
   }
   if (shadowCaster && !desc.objects.empty()) e |= kShadows;
-  for (size_t i = 0; i < s.materials.size(); ++i) {
-    const Material& m = s.materials[i];
-    const Surface& surface = s.materials.surface(m);
-    if (surface.reflective) e |= kReflection;
-    if (!m.opaque) e |= kTransmission;
-    if (surface.highlights && shadowCaster) e |= kHighlights;
-    if (m.checker >= 0) e |= kTextures;
-  }
+  // A material each object: a million of them, read on every thread.
+  const Blocks blocks(s.materials.size(), threads, 4096);
+  std::vector<EffectSet> found(blocks.count, 0);
+  parallelBlocks(blocks, threads, [&](size_t b, size_t lo, size_t hi) {
+    EffectSet f = 0;
+    for (size_t i = lo; i < hi; ++i) {
+      const Material& m = s.materials[i];
+      const Surface& surface = s.materials.surface(m);
+      if (surface.reflective) f |= kReflection;
+      if (!m.opaque) f |= kTransmission;
+      if (surface.highlights && shadowCaster) f |= kHighlights;
+      if (m.checker >= 0) f |= kTextures;
+    }
+    found[b] = f;
+  });
+  for (const EffectSet f : found) e |= f;
   return e;
 }
 
@@ -335,7 +356,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
   for (size_t b = 0; b < blocks.count; ++b)
     for (uint32_t object : interiors[b])
       if (s.cameraInteriors.find(object) < 0) s.cameraInteriors.push(object);
-  s.tol = rayTolerances(typicalSize(objectSizes), eye);
+  s.tol = rayTolerances(typicalSize(objectSizes, blocks, threads), eye);
   // The blocks' other shapes into one array, their records renumbered to match, and the
   // unbounded primitives given the scene's unit.
   std::vector<size_t> firstOther(blocks.count + 1, 0);
@@ -350,7 +371,7 @@ Scene build(const SceneDesc& desc, std::vector<ObjectDesc>* release, const Build
       if (objectSizes[r.object] < 0) store.setUnit(k, float(s.tol.unit));
     }
   });
-  s.effects = deriveEffects(s, desc);
+  s.effects = deriveEffects(s, desc, threads);
   if (release) std::vector<ObjectDesc>().swap(*release);
   interrupt::check();
   std::vector<double>().swap(objectSizes);

@@ -52,6 +52,35 @@ TEST(ParallelMedian, NeighboursDifferingInTheLastBitAreTold) {
   EXPECT_EQ(parallelMedian(std::vector<std::vector<float>>{{0.0f, INFINITY, INFINITY}}, 1), INFINITY);
 }
 
+// Doubles at every rank, the lowest and highest included: what nth_element puts there.
+TEST(ParallelNth, FindsEveryRankOfDoubles) {
+  for (unsigned seed = 1; seed <= 30; ++seed) {
+    std::mt19937 rng(seed);
+    std::vector<std::vector<double>> parts(rng() % 7 + 1);
+    std::uniform_real_distribution<double> mantissa(0.5, 1.0);
+    const size_t count = 1 + seed * 53 % 3000;
+    std::vector<double> all;
+    for (size_t i = 0; i < count; ++i) {
+      double v = std::ldexp(mantissa(rng), int(rng() % 2000) - 1000);
+      if (rng() % 40 == 0) v = 0;
+      if (rng() % 60 == 0) v = INFINITY;
+      if (rng() % 5 == 0) v = std::nextafter(1.0, 2.0);  // a value many share, one ulp off 1
+      if (rng() % 7 == 0) v = 1.0;
+      parts[rng() % parts.size()].push_back(v);
+      all.push_back(v);
+    }
+    for (size_t rank : {size_t(0), (count - 1) / 2, count / 2, count - 1, size_t(rng() % count)}) {
+      std::vector<double> sorted = all;
+      std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(rank), sorted.end());
+      for (int threads : {1, 3}) {
+        const double got = parallelNth<double>(parts, rank, threads);
+        EXPECT_EQ(std::bit_cast<uint64_t>(got), std::bit_cast<uint64_t>(sorted[rank]))
+            << "seed " << seed << ", rank " << rank << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
 TEST(ParallelMedian, NoValuesGiveNan) {
   EXPECT_TRUE(std::isnan(parallelMedian(std::vector<std::vector<float>>{}, 2)));
   EXPECT_TRUE(std::isnan(parallelMedian(std::vector<std::vector<float>>{{}, {}}, 2)));

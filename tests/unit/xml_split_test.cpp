@@ -213,6 +213,35 @@ TEST(XmlSplit, AGeneratedSceneAndItsErrorsAreTheSameInPieces) {
   expectSameInPieces(badThenMalformed, "a bad no_shadow, then malformed XML");
 }
 
+// Line ends of a file of several megabytes, which withLineFeeds() looks through on every
+// thread: lone CRs end lines as LFs do, CR LF is one line end; an error near the end names
+// the same line in all three, whole or in pieces.
+TEST(XmlSplit, LoneCarriageReturnsEndLinesInABigFile) {
+  GenerateOptions g;
+  g.spheres = 14000;  // about 3 MB
+  const std::string lf = sceneToXml(generateScene(g));
+  ASSERT_GT(lf.size(), size_t(3) << 20);
+  const size_t last = lf.rfind("<sphere");
+  const std::string bad = lf.substr(0, last) + "<sphere no_shadow=\"maybe\" " + lf.substr(last + 7);
+  auto ending = [](const std::string& text, const std::string& end) {
+    std::string out;
+    for (const char c : text) c == '\n' ? out += end : out += c;
+    return out;
+  };
+  for (const std::string& text : {lf, bad}) {
+    const std::string expected = outcome(text, kWhole);
+    // Lone CRs everywhere, CR LF everywhere, and lone CRs only after the first 2 MB (in
+    // the blocks of the scan that come last).
+    const size_t late = text.find('\n', size_t(2) << 20);
+    for (const std::string& other : {ending(text, "\r"), ending(text, "\r\n"),
+                                     text.substr(0, late) + ending(text.substr(late), "\r")}) {
+      EXPECT_EQ(outcome(other, kWhole), expected) << "whole";
+      EXPECT_EQ(outcome(other, 4096), expected) << "in pieces";
+    }
+  }
+  EXPECT_NE(outcome(bad, kWhole).find("no_shadow"), std::string::npos);
+}
+
 // Found by the fuzz target: errors the skeleton (the root, what follows it) reports must
 // not come before malformed XML inside a piece, and an end tag is no place for a '<'.
 TEST(XmlSplit, MalformedPiecesComeBeforeErrorsAroundTheRoot) {
