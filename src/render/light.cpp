@@ -91,7 +91,8 @@ Vec3 Light::areaSample(int i, int j, const Vec3& toLight) const {
     u *= s;
     v *= s;
   }
-  return location + a1 * u + a2 * v;
+  // As ComputeOneWhiteLightRay: the two offsets summed first, then added to the centre.
+  return location + (a1 * u + a2 * v);
 }
 
 }  // namespace pvrt

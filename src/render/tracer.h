@@ -1136,7 +1136,7 @@ class Tracer {
     if (!s.made) {
       const Vec3 d = (light.grid.empty() ? light.areaSample(i, j, l) : light.grid[size_t(j) * light.size1 + i]) - p;
       s.dist = length(d);
-      s.dir = d / s.dist;
+      s.dir = d * (1.0 / s.dist);  // POV-Ray's VInverseScaleEq: times the reciprocal
       s.made = true;
     }
     return s;
@@ -1175,8 +1175,8 @@ class Tracer {
     }
     if (n < 2) return;  // a lone segment goes its own way
     if (!light.grid.empty()) {
-      // Four segments' square roots and divisions at once, each lane length()'s and operator/'s
-      // operations in their order (a segment made alone would wait on its own).
+      // Four segments' square roots and reciprocals at once, each lane length()'s and
+      // areaSegment()'s operations in their order (a segment made alone would wait on its own).
       using namespace lanes;
       for (int g = 0; g < n; g += 4) {
         alignas(32) double q[3][4];
@@ -1187,7 +1187,8 @@ class Tracer {
         const Double4 dx = load(q[0]) - splat(p.x), dy = load(q[1]) - splat(p.y), dz = load(q[2]) - splat(p.z);
         const Double4 dist = lanes::sqrt(dx * dx + dy * dy + dz * dz);
         alignas(32) double ox[4], oy[4], oz[4], od[4];
-        store(ox, dx / dist), store(oy, dy / dist), store(oz, dz / dist), store(od, dist);
+        const Double4 inv = splat(1.0) / dist;
+        store(ox, dx * inv), store(oy, dy * inv), store(oz, dz * inv), store(od, dist);
         for (int c = 0; c < 4 && g + c < n; ++c) {
           AreaSegment& s = areaSegments_[at[g + c]];
           s.dir = {ox[c], oy[c], oz[c]};

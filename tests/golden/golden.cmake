@@ -36,3 +36,10 @@ foreach(case make variant run broken stale tolerance bless external new append c
   set_tests_properties(golden-tool.${case} PROPERTIES LABELS golden-tool FIXTURES_REQUIRED golden-tool
                                                      SKIP_RETURN_CODE 77 TIMEOUT 120)
 endforeach()
+
+# Random scenes of every shape, finish and light on round numbers (tools/difftest.py), against
+# POV-Ray: the first eight seeds, which agree today; `tools/difftest.py --count 300` finds the
+# cases that do not (docs/fidelity.md, "Random scenes against POV-Ray").
+add_test(NAME golden.difftest COMMAND ${PROJECT_SOURCE_DIR}/tools/difftest.py --count 8 --seed 1
+                                      --out ${PROJECT_BINARY_DIR}/difftest-out --pvrt $<TARGET_FILE:pvrt>)
+set_tests_properties(golden.difftest PROPERTIES LABELS golden SKIP_RETURN_CODE 77 TIMEOUT 300)
