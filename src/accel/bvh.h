@@ -297,15 +297,17 @@ class Bvh {
   template <class Visit>
   void traverse(const Ray& ray, double tMin, const double& tMax, Visit&& visit) const;
 
-  std::optional<ShapeHit> intersectItem(uint32_t i, const Ray& ray, double tMin, double tMax) const {
+  std::optional<ShapeHit> intersectItem(uint32_t i, const Ray& ray, double tMin, double tMax,
+                                        Primitive::Reach reach = Primitive::Reach::ThroughTree) const {
     const PrimitiveRecord& it = items_[i];
     switch (it.kind) {
       case PrimitiveRecord::Kind::Sphere: return intersectWorldSphere(it.sphere, it.unit, ray, tMin, tMax);
       case PrimitiveRecord::Kind::Plane: return detail::hitPlane(it.plane, ray, tMin, tMax, it.unit);
       case PrimitiveRecord::Kind::Other: break;
     }
-    std::optional<ShapeHit> hit = others_[it.other].intersect(ray, tMin, tMax);
-    if (hit && i < povAbove_.size() && !povPassesNodesAbove(i, ray)) return std::nullopt;
+    std::optional<ShapeHit> hit = others_[it.other].intersect(ray, tMin, tMax, reach);
+    if (hit && reach == Primitive::Reach::ThroughTree && i < povAbove_.size() && !povPassesNodesAbove(i, ray))
+      return std::nullopt;
     return hit;
   }
 

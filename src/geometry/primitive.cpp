@@ -273,7 +273,7 @@ bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
 
 }  // namespace
 
-std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
+std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax, Reach reach) const {
   const std::optional<ShapeHit> hit = intersectShape(*this, ray, tMin, tMax);
   // POV-Ray tests a cylinder, cone or disc only when the ray meets its float bounding box,
   // which far from the origin leaves slivers of it out (a cylinder 1e5 away: blind11). In its
@@ -284,10 +284,11 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
   // after a hit gives the same answer, and only the rays that hit pay for it.
   if (!hit) return hit;
   const bool boxFirst = povTestsBBoxFirst(*this);
-  if (!boxFirst && !povTreeLeaf) return hit;
+  const bool leaf = povTreeLeaf && reach == Reach::ThroughTree;
+  if (!boxFirst && !leaf) return hit;
   const std::optional<PovBBox> box = povBBox();
   if (box && withinFloatBoxReach(*box, ray) &&
-      ((boxFirst && !povBBoxDirHits(*box, ray)) || (povTreeLeaf && !std::isfinite(povBBoxKey(*box, ray)))))
+      ((boxFirst && !povBBoxDirHits(*box, ray)) || (leaf && !std::isfinite(povBBoxKey(*box, ray)))))
     return std::nullopt;
   return hit;
 }

@@ -75,8 +75,12 @@ struct Primitive {
   // slabs let its box in, as well as Intersect_BBox's.
   bool povTreeLeaf = false;
 
+  // How a ray comes to the object: through POV-Ray's bounding tree (Find_Intersection, for
+  // every ray but one), or straight to it, as the shadow cache's test reaches its object
+  // (FindIntersection(object, ...): Intersect_BBox and the shape's own test, no tree).
+  enum class Reach { ThroughTree, Direct };
   // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
-  std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
+  std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax, Reach reach = Reach::ThroughTree) const;
   // POV-Ray's hit point, origin + t * dir (world space), with a bound on its distance
   // from the surface.
   SurfacePoint surfacePoint(const Ray& ray, const ShapeHit& hit) const;

@@ -124,6 +124,33 @@ TEST(PovBBox, InTheBoundingTreeAnObjectIsReachedOnlyThroughItsLeafsFloatSlabs) {
   EXPECT_TRUE(alone.bvh.primitive(0).intersect(kCorner76, 1e-4, 1e7).has_value());
 }
 
+// The shadow cache's test of its object is no walk of the tree: POV-Ray's
+// FindIntersection(object, ...) asks the object's Intersect_BBox (true for a box) and its own
+// test. A floor point's segment to an area-light sample that passes exactly along a box's
+// bottom edge (difftest seed 267) hits the box by Box::Intersect, which the leaf's float slabs
+// turn away: the full test lets it through, the cached box stops it.
+TEST(PovBBox, TheShadowCacheTestsItsObjectWithoutTheTree) {
+  const Scene s = buildScene(loadSceneString(R"(<scene>
+    <light_source location="2 4 2"><area_light axis1="2 0 0" axis2="0 0 1" size1="3" size2="3"/></light_source>
+    <plane normal="0 1 0"/>
+    <box corner1="1.5 1 1.5" corner2="2 2 2.5"/>
+  </scene>)",
+                                                 "edge.xml"));
+  const Ray segment{{0x1.aaaaaaaaaaaadp+0, 0, 0x1.eeeeeeeeeeef0p+0},
+                    {-0x1.50a4c55fcc323p-3, 0x1.f8f7280fb24aep-1, 0x1.0d509de63cf3bp-6}};
+  uint32_t box = 0;
+  while (s.bvh.object(box) != 1) ++box;
+  const Primitive& p = s.bvh.primitive(box);
+  ASSERT_TRUE(p.povTreeLeaf);
+  EXPECT_FALSE(std::isfinite(povBBoxKey(*p.povBBox(), segment)));  // the leaf's slabs turn it away
+  EXPECT_FALSE(p.intersect(segment, 1e-3, 4.05).has_value());
+  EXPECT_TRUE(p.intersect(segment, 1e-4, 4.05, Primitive::Reach::Direct).has_value());  // Box::Intersect
+  uint64_t tests = 0;
+  uint32_t blocker = 0;
+  EXPECT_EQ(s.bvh.occlusion(segment, 1e-3, 4.05, tests, blocker), Occlusion::Clear);
+  EXPECT_TRUE(s.bvh.objectHit(box, segment, 1e-4, 4.0557229798013683, tests));
+}
+
 // And through every node above the leaf: here the green box's node (with the red box and the
 // disc) shares the box's faces x = 0 and z = 0, and a camera whose look_at lies on the edge they
 // meet along sends its centre column exactly along it (blind12 c06: 50 levels off under method
