@@ -158,15 +158,15 @@ Occlusion Bvh::occlusion(const Ray& ray, double tMin, double tMax, uint64_t& tes
 
 bool Bvh::objectHit(uint32_t i, const Ray& ray, double tMin, double tMax, uint64_t& tests) const {
   ++tests;
-  if (!items_[i].sharesObject) return intersectItem(i, ray, tMin, tMax).has_value();
+  if (!items_[i].sharesObject) return intersectItem(i, ray, tMin, tMax, false).has_value();
   // A mesh: any of its triangles, found by a walk that tests no other object's primitives.
   const uint32_t object = items_[i].object;
-  bool hit = intersectItem(i, ray, tMin, tMax).has_value();  // the cached triangle first
+  bool hit = intersectItem(i, ray, tMin, tMax, false).has_value();  // the cached triangle first
   if (!hit)
     traverse(ray, tMin, tMax, [&](uint32_t j) {
       if (j == i || items_[j].object != object) return false;
       ++tests;
-      return hit = intersectItem(j, ray, tMin, tMax).has_value();
+      return hit = intersectItem(j, ray, tMin, tMax, false).has_value();
     });
   return hit;
 }

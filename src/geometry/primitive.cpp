@@ -273,7 +273,7 @@ bool withinFloatBoxReach(const PovBBox& box, const Ray& ray) {
 
 }  // namespace
 
-std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax) const {
+std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double tMax, bool throughTree) const {
   const std::optional<ShapeHit> hit = intersectShape(*this, ray, tMin, tMax);
   // POV-Ray tests a cylinder, cone or disc only when the ray meets its float bounding box,
   // which far from the origin leaves slivers of it out (a cylinder 1e5 away: blind11). In its
@@ -282,12 +282,13 @@ std::optional<ShapeHit> Primitive::intersect(const Ray& ray, double tMin, double
   // can fall outside them (blind12 c22). Boxes, spheres and triangles skip the first test (a
   // ray lying in a box's face plane made it 0 * inf, NaN, a miss: blind13). Testing the boxes
   // after a hit gives the same answer, and only the rays that hit pay for it.
+  // The shadow cache's object is tested alone (throughTree false): its own Intersect_BBox only.
   if (!hit) return hit;
-  const bool boxFirst = povTestsBBoxFirst(*this);
-  if (!boxFirst && !povTreeLeaf) return hit;
+  const bool boxFirst = povTestsBBoxFirst(*this), treeLeaf = povTreeLeaf && throughTree;
+  if (!boxFirst && !treeLeaf) return hit;
   const std::optional<PovBBox> box = povBBox();
   if (box && withinFloatBoxReach(*box, ray) &&
-      ((boxFirst && !povBBoxDirHits(*box, ray)) || (povTreeLeaf && !std::isfinite(povBBoxKey(*box, ray)))))
+      ((boxFirst && !povBBoxDirHits(*box, ray)) || (treeLeaf && !std::isfinite(povBBoxKey(*box, ray)))))
     return std::nullopt;
   return hit;
 }

@@ -75,8 +75,10 @@ struct Primitive {
   // slabs let its box in, as well as Intersect_BBox's.
   bool povTreeLeaf = false;
 
-  // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing.
-  std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax) const;
+  // Nearest hit with tMin < t < tMax along `ray` (world space). Counts nothing. `throughTree`
+  // false: the object tested alone, as POV-Ray's FindIntersection(object, ...) tests the shadow
+  // cache's object (its Intersect_BBox, but no leaf of the bounding tree: povTreeLeaf ignored).
+  std::optional<ShapeHit> intersect(const Ray& ray, double tMin, double tMax, bool throughTree = true) const;
   // POV-Ray's hit point, origin + t * dir (world space), with a bound on its distance
   // from the surface.
   SurfacePoint surfacePoint(const Ray& ray, const ShapeHit& hit) const;

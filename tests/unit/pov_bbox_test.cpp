@@ -365,3 +365,36 @@ TEST(TieOrder, PlanesMetAtOneDepthTieInPovRaysHeapOrder) {
 
 }  // namespace
 }  // namespace pvrt
+
+namespace pvrt {
+namespace {
+
+// POV-Ray tries the shadow cache's object alone (Trace::FindIntersection(object, ...): its own
+// Intersect_BBox, true for a box, then Box::Intersect), not through the bounding tree, whose
+// float slabs can turn away a ray that grazes an edge the box's own test hits. blind14's shadow
+// ray: from the floor point (-0.175, 0, 0.9125) towards a light at (2, 5, 2) its direction's x
+// is exactly twice its z, so it passes through the box's edge x = 0, z = 1; Box::Intersect
+// enters and leaves there at one depth (a hit), the tree's leaf test does not let it in. With
+// the box cached POV-Ray shadows the point (a method-2 sample, scenes/outside/shadow_cache_box_edge).
+TEST(PovBBox, TheShadowCachesObjectIsTestedAloneNotThroughTheTree) {
+  const Scene scene = buildScene(loadSceneString(
+      "<scene><light_source location=\"2 5 2\"/>"
+      "<box corner1=\"0 0 0\" corner2=\"1 1 1\"/><plane/></scene>",
+      "edge.xml"));
+  ASSERT_EQ(scene.bvh.tieRule(), TieRule::BoxEntry);  // three objects and lights: a tree
+  const Ray toLight{{std::stod("-0x1.666666666666p-3"), 0, std::stod("0x1.d333333333334p-1")},
+                    {std::stod("0x1.9093dde7aa24cp-2"), std::stod("0x1.cc6f1c7d0a303p-1"),
+                     std::stod("0x1.9093dde7aa24cp-3")}};
+  const double dist = std::stod("0x1.63d6920303c77p+2");
+  uint32_t box = 0;
+  while (scene.bvh.object(box) != 0) ++box;
+  // Through the tree (the full test): missed, in POV-Ray as in pvrt.
+  EXPECT_FALSE(scene.bvh.intersect(box, toLight, 1e-3, dist - 1e-3).has_value());
+  EXPECT_FALSE(scene.bvh.intersect(box, toLight, 1e-4, dist).has_value());  // what objectHit answered before
+  // Alone (the cached object): hit at the edge.
+  uint64_t tests = 0;
+  EXPECT_TRUE(scene.bvh.objectHit(box, toLight, 1e-4, dist, tests));
+}
+
+}  // namespace
+}  // namespace pvrt
