@@ -396,5 +396,27 @@ TEST(PovBBox, TheShadowCachesObjectIsTestedAloneNotThroughTheTree) {
   EXPECT_TRUE(scene.bvh.objectHit(box, toLight, 1e-4, dist, tests));
 }
 
+// POV-Ray's parser returns a degenerate lone smooth_triangle (its vertex normals on both sides
+// of its face) with its corners' box: never hit, it stays among the objects and in the bounding
+// tree, where it moves the order of ties between the others. blind14's b11: red, green and blue
+// triangles in the plane z = 0 and such a smooth triangle below them; the camera's method-2
+// corner ray at (55, 75) meets the vertex (-1, -1, 0) that red and blue share, at one depth and
+// with equal keys, and POV-Ray 3.7.0.10 shows blue there (without the smooth triangle the
+// order changes: its image differs in 8 pixels).
+TEST(TieOrder, ADegenerateLoneSmoothTriangleStaysInTheTree) {
+  const Scene scene = buildScene(loadSceneString(
+      "<scene><camera location=\"0 0 -4\" look_at=\"0 0 0\" right=\"1.6 0 0\"/>"
+      "<light_source location=\"0 0 -4\"/>"
+      "<triangle p1=\"-1 -1 0\" p2=\"1 -1 0\" p3=\"0 1 0\"/>"
+      "<triangle p1=\"1 -1 0\" p2=\"0 1 0\" p3=\"2 1 0\"/>"
+      "<triangle p1=\"-1 -1 0\" p2=\"0 1 0\" p3=\"-2 1 0\"/>"
+      "<smooth_triangle p1=\"-1 -1 0\" n1=\"0 0 -1\" p2=\"1 -1 0\" n2=\"0 0 1\" p3=\"0 -2 0\" n3=\"0 1 -1\"/>"
+      "<plane normal=\"0 0 -1\" distance=\"-1\"/></scene>",
+      "b11.xml"));
+  ASSERT_EQ(scene.bvh.size(), 5u);  // the smooth triangle is one of them
+  EXPECT_EQ(objectSeen(scene, Ray{{0, -1.5, -1}, {0, 0, 1}}), 4u);  // through the smooth triangle: never hit
+  EXPECT_EQ(objectSeen(scene, scene.camera.ray(55, 75, -0.5, -0.5, 160, 100)), 2u);  // blue
+}
+
 }  // namespace
 }  // namespace pvrt
