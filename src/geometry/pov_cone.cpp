@@ -54,11 +54,14 @@ std::optional<PovConeHit> hitPovCone(const PovConeShape& c, const Ray& local, do
   const Vec3 d = local.dir * (1.0 / len);
   const double tolerance = kConeTolerance * unit;
 
-  // Candidates in POV-Ray's order; a later one wins only when strictly nearer.
+  // Candidates in the order Cone::All_Intersections pushes them (the sides' roots, the cap at
+  // z = 1, the base at dist). FindIntersection pops them from the top, the last pushed first,
+  // keeping one only when strictly nearer: so of two at one depth the later wins (a ray through
+  // the rim where the side and a cap meet at one depth shades the cap; blind14 a05).
   std::optional<PovConeHit> best;
   auto consider = [&](double t, int part) {
     const double depth = t / len;
-    if (t > tolerance && depth > lo && depth < hi && (!best || depth < best->t)) best = PovConeHit{depth, part};
+    if (t > tolerance && depth > lo && depth < hi && (!best || depth <= best->t)) best = PovConeHit{depth, part};
   };
   auto side = [&](double t, double zMin) {
     const double z = p.z + t * d.z;

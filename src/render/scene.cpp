@@ -155,9 +155,19 @@ class PrimitiveBuilder {
   void operator()(const SmoothTriangleRef& t) {
     PovTriangleBuilder b(t->p1, t->n1, t->p2, t->n2, t->p3, t->n3);
     povSteps(b);
-    // POV-Ray drops a lone smooth_triangle of zero area or whose vertex normals are not all
-    // strictly on one side of its face ("Degenerate triangle").
-    if (!b.degenerate()) add(b.smooth(), false);
+    // A lone smooth_triangle of zero area or whose vertex normals are not all strictly on one
+    // side of its face is never hit ("Degenerate triangle": Compute_Triangle sets DEGENERATE_FLAG),
+    // but Parse_Smooth_Triangle still returns it, with the box of its corners: it stays among the
+    // objects, in the bounding threshold's count and in the tree, where its box moves the order
+    // of ties between the others (blind14 b11). Kept as a flat triangle never hit, as a
+    // degenerate lone triangle is.
+    if (!b.degenerate()) {
+      add(b.smooth(), false);
+    } else {
+      PovTriangleShape shape = b.flat();
+      shape.normal = Vec3{};  // never hit
+      add(shape, false);
+    }
   }
   // A mesh as POV-Ray's parser makes it (Parse_Mesh, geometry/pov_mesh.h): its triangles in
   // mesh space, in the order the exporter writes them, and every transform written composed
@@ -260,14 +270,10 @@ class PrimitiveBuilder {
   SharedTransform shared_;
 };
 
-// The primitives an object makes: one, but for a mesh's triangles and a degenerate
-// smooth_triangle (none).
+// The primitives an object makes: one, but for a mesh's triangles.
 size_t primitiveCount(const ObjectDesc& o) {
   if (const MeshDesc* mesh = std::get_if<MeshDesc>(&o.shape)) return mesh->triangles.size() + mesh->smoothTriangles.size();
-  if (!std::holds_alternative<SmoothTriangleRef>(o.shape)) return 1;
-  PrimitiveSink count;
-  std::visit(PrimitiveBuilder(count, 0, o.noShadow, o.transforms), o.shape);
-  return count.made;
+  return 1;
 }
 
 EffectSet deriveEffects(const Scene& s, const SceneDesc& desc, int threads) {

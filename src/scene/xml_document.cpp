@@ -211,7 +211,10 @@ size_t firstBadCharacterReference(std::string_view s) {
       else break;
       cp = std::min(cp * (hex ? 16 : 10) + digit, 0x110000ul);  // capped: too large either way
     }
-    if (j == i + (hex ? 3 : 2) || j >= s.size() || s[j] != ';') continue;  // not a reference: left as text
+    if (j >= s.size() || s[j] != ';') continue;  // not a reference: left as text
+    // "&#;" and "&#x;" (no digits) are no references either, but tinyxml2 decodes them to
+    // nothing, so radius="1&#x;0" read as 10 (blind14): XML's CharRef needs a digit.
+    if (j == i + (hex ? 3 : 2)) return i;
     // XML 1.0's Char production.
     const bool ok = cp == 0x9 || cp == 0xa || cp == 0xd || (cp >= 0x20 && cp <= 0xd7ff) ||
                     (cp >= 0xe000 && cp <= 0xfffd) || (cp >= 0x10000 && cp <= 0x10ffff);
@@ -322,8 +325,10 @@ void checkSceneText(std::string_view bytes, const std::string& name) {
   }
   if (const size_t bad = firstBadCharacterReference(bytes); bad != std::string_view::npos) {
     const std::string_view ref = bytes.substr(bad, std::min(bytes.find(';', bad) + 1, bad + 16) - bad);
+    const bool noDigits = ref == "&#;" || ref == "&#x;";
     throw sceneError({name, lineAt(bytes, bad)}, "xml",
-                     "character reference " + std::string(ref) + " is not an XML character");
+                     "character reference " + std::string(ref) +
+                         (noDigits ? " has no digits (XML writes &#N; or &#xH;)" : " is not an XML character"));
   }
   if (const auto [bad, what] = firstLaxMarkup(bytes); bad != std::string_view::npos)
     throw sceneError({name, lineAt(bytes, bad)}, "xml", what);

@@ -392,3 +392,58 @@ TEST(TieOrder, PlanesMetAtOneDepthTieInPovRaysHeapOrder) {
 
 }  // namespace
 }  // namespace pvrt
+
+namespace pvrt {
+namespace {
+
+// POV-Ray tries the shadow cache's object alone (Trace::FindIntersection(object, ...): its own
+// Intersect_BBox, true for a box, then Box::Intersect), not through the bounding tree, whose
+// float slabs can turn away a ray that grazes an edge the box's own test hits. blind14's shadow
+// ray: from the floor point (-0.175, 0, 0.9125) towards a light at (2, 5, 2) its direction's x
+// is exactly twice its z, so it passes through the box's edge x = 0, z = 1; Box::Intersect
+// enters and leaves there at one depth (a hit), the tree's leaf test does not let it in. With
+// the box cached POV-Ray shadows the point (a method-2 sample, scenes/outside/shadow_cache_box_edge).
+TEST(PovBBox, TheShadowCachesObjectIsTestedAloneNotThroughTheTree) {
+  const Scene scene = buildScene(loadSceneString(
+      "<scene><light_source location=\"2 5 2\"/>"
+      "<box corner1=\"0 0 0\" corner2=\"1 1 1\"/><plane/></scene>",
+      "edge.xml"));
+  ASSERT_EQ(scene.bvh.tieRule(), TieRule::BoxEntry);  // three objects and lights: a tree
+  const Ray toLight{{std::stod("-0x1.666666666666p-3"), 0, std::stod("0x1.d333333333334p-1")},
+                    {std::stod("0x1.9093dde7aa24cp-2"), std::stod("0x1.cc6f1c7d0a303p-1"),
+                     std::stod("0x1.9093dde7aa24cp-3")}};
+  const double dist = std::stod("0x1.63d6920303c77p+2");
+  uint32_t box = 0;
+  while (scene.bvh.object(box) != 0) ++box;
+  // Through the tree (the full test): missed, in POV-Ray as in pvrt.
+  EXPECT_FALSE(scene.bvh.intersect(box, toLight, 1e-3, dist - 1e-3).has_value());
+  EXPECT_FALSE(scene.bvh.intersect(box, toLight, 1e-4, dist).has_value());  // what objectHit answered before
+  // Alone (the cached object): hit at the edge.
+  uint64_t tests = 0;
+  EXPECT_TRUE(scene.bvh.objectHit(box, toLight, 1e-4, dist, tests));
+}
+
+// POV-Ray's parser returns a degenerate lone smooth_triangle (its vertex normals on both sides
+// of its face) with its corners' box: never hit, it stays among the objects and in the bounding
+// tree, where it moves the order of ties between the others. blind14's b11: red, green and blue
+// triangles in the plane z = 0 and such a smooth triangle below them; the camera's method-2
+// corner ray at (55, 75) meets the vertex (-1, -1, 0) that red and blue share, at one depth and
+// with equal keys, and POV-Ray 3.7.0.10 shows blue there (without the smooth triangle the
+// order changes: its image differs in 8 pixels).
+TEST(TieOrder, ADegenerateLoneSmoothTriangleStaysInTheTree) {
+  const Scene scene = buildScene(loadSceneString(
+      "<scene><camera location=\"0 0 -4\" look_at=\"0 0 0\" right=\"1.6 0 0\"/>"
+      "<light_source location=\"0 0 -4\"/>"
+      "<triangle p1=\"-1 -1 0\" p2=\"1 -1 0\" p3=\"0 1 0\"/>"
+      "<triangle p1=\"1 -1 0\" p2=\"0 1 0\" p3=\"2 1 0\"/>"
+      "<triangle p1=\"-1 -1 0\" p2=\"0 1 0\" p3=\"-2 1 0\"/>"
+      "<smooth_triangle p1=\"-1 -1 0\" n1=\"0 0 -1\" p2=\"1 -1 0\" n2=\"0 0 1\" p3=\"0 -2 0\" n3=\"0 1 -1\"/>"
+      "<plane normal=\"0 0 -1\" distance=\"-1\"/></scene>",
+      "b11.xml"));
+  ASSERT_EQ(scene.bvh.size(), 5u);  // the smooth triangle is one of them
+  EXPECT_EQ(objectSeen(scene, Ray{{0, -1.5, -1}, {0, 0, 1}}), 4u);  // through the smooth triangle: never hit
+  EXPECT_EQ(objectSeen(scene, scene.camera.ray(55, 75, -0.5, -0.5, 160, 100)), 2u);  // blue
+}
+
+}  // namespace
+}  // namespace pvrt

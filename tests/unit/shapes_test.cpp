@@ -599,5 +599,23 @@ TEST(Shapes, ScaledDiscKeepsWorldDistance) {
   EXPECT_FALSE(hit(d, {{3.1, 10, 0}, -kY}));
 }
 
+// Cone::All_Intersections pushes the sides' roots, then the caps, and FindIntersection pops the
+// last pushed first, keeping a hit only when strictly nearer: of two at one depth the later
+// wins. blind14's a05: the camera's method-2 corner rays at (74, 12) and (86, 12) meet the
+// base cap's rim (x = -0.3 and 0.3, y - 1.5 = 0.4: radius 0.5) where the side's root and the
+// cap's depth are the same double; POV-Ray shades the cap there (it faces the camera), pvrt
+// kept the side.
+TEST(Shapes, ConeRimMetAtOneDepthBySideAndCapIsTheCap) {
+  const Scene scene = buildScene(loadSceneString(
+      "<scene><camera location=\"0 0 -6\" look_at=\"0 0 0\" right=\"1.6 0 0\"/>"
+      "<cone base=\"0 1.5 -1\" base_radius=\"0.5\" cap=\"0 1.5 1\" cap_radius=\"0\"/></scene>"));
+  for (int x : {74, 86}) {
+    const Ray ray = scene.camera.ray(x, 12, -0.5, -0.5, 160, 100);
+    const std::optional<ShapeHit> h = scene.bvh.intersect(0, ray, 1e-4, 1e7);
+    ASSERT_TRUE(h.has_value()) << x;
+    EXPECT_EQ(h->part, 2) << x << ": the written base's cap (canonical z = 1), not the side";
+  }
+}
+
 }  // namespace
 }  // namespace pvrt

@@ -60,6 +60,14 @@ TEST(XmlBadInput, CharacterReferencesToNonCharactersAreRefused) {
             "t.xml:2: error: xml: character reference &#xD800; is not an XML character");
   EXPECT_EQ(errorOf("<scene>\n\n<sphere center=\"0 0 0\" radius=\"&#x110000;\"/></scene>"),
             "t.xml:3: error: xml: character reference &#x110000; is not an XML character");
+  // With no digits they are not XML references, yet tinyxml2 decoded them to nothing: "1&#x;0" was 10
+  // and "1&#;" 1, in attributes and in text alike (blind14).
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#x;0\"/>")),
+            "t.xml:2: error: xml: character reference &#x; has no digits (XML writes &#N; or &#xH;)");
+  EXPECT_EQ(errorOf(inScene("<sphere center=\"0 0 0\" radius=\"1&#;\"/>")),
+            "t.xml:2: error: xml: character reference &#; has no digits (XML writes &#N; or &#xH;)");
+  EXPECT_EQ(errorOf(inScene("\n<sphere center=\"0 0 0\" radius=\"1\">&#x;</sphere>")),
+            "t.xml:3: error: xml: character reference &#x; has no digits (XML writes &#N; or &#xH;)");
   // Inside comments they are not references; good ones are decoded.
   EXPECT_NO_THROW(loadSceneString("<scene><!-- &#0; --><sphere center=\"0 0 0\" radius=\"&#x31;&#48;\"/></scene>"));
   EXPECT_EQ(std::get<SphereDesc>(loadSceneString("<scene><sphere center=\"0 0 0\" radius=\"&#x31;&#48;\"/></scene>")
