@@ -3,11 +3,18 @@
 // difference, and the job runner's exit codes.
 #include <gtest/gtest.h>
 
+#include <pthread.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "golden/manifest.h"
 #include "golden/process.h"
 #include "golden/render_settings.h"
@@ -209,6 +216,35 @@ TEST(GoldenProcess, JobsRunInParallelAndKeepTheirOrderAndExitCodes) {
   EXPECT_EQ(r[3].exitCode, 128 + 15);
   EXPECT_EQ(runJob({{"sh", "-c", "echo one; echo two >&2"}, log, ""}).exitCode, 0);
   EXPECT_EQ(tailOf(log, 1), "two\n");
+}
+
+// Ctrl-C during `pvrt golden run` or `make` must end the run, not only the render it hit:
+// runJobs used to take the interrupted waitpid for "no more children" and return with the
+// remaining jobs marked exit code -1 (or, unhandled, pvrt died leaving POV-Ray's scratch
+// folder in /tmp). Now it starts nothing more, ends and waits for every running job, and
+// throws the interrupt (exit code 130) so that the callers' scratch folders are removed.
+TEST(GoldenProcess, AnInterruptEndsEveryJobAndThrows) {
+  interrupt::install();
+  const pthread_t self = pthread_self();
+  std::thread signaller([self] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    pthread_kill(self, SIGINT);  // to this thread, which waits in waitpid
+  });
+  const auto start = std::chrono::steady_clock::now();
+  const std::string marker = writeTemp("not-started", "");
+  fs::remove(marker);
+  int code = 0;
+  try {
+    runJobs({{{"sleep", "30"}, "", ""}, {{"sleep", "30"}, "", ""}, {{"touch", marker}, "", ""}}, 2);
+  } catch (const Error& e) {
+    code = int(e.code());
+  }
+  signaller.join();
+  interrupt::clear();
+  EXPECT_EQ(code, 130);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  EXPECT_FALSE(fs::exists(marker)) << "a job was started after the interrupt";
+  EXPECT_EQ(waitpid(-1, nullptr, WNOHANG), -1) << "a job was left running or unwaited";
 }
 
 }  // namespace
