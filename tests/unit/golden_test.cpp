@@ -19,6 +19,7 @@
 #include "golden/process.h"
 #include "golden/render_settings.h"
 #include "golden/report.h"
+#include "golden/suite.h"
 #include "golden/tolerances.h"
 
 namespace pvrt::golden {
@@ -144,6 +145,33 @@ TEST(GoldenTolerances, SuiteDefaultAndMissingReason) {
             r + ":2: error: max_off_by_1 \"three channels\" is not a whole number from 0 to 1000000");
   const std::string q = writeTemp("t3.tsv", head + "glass\t4\t2\twhy\n");
   EXPECT_EQ(errorOf([&] { readTolerances(q); }), q + ":2: error: max_fraction_over_1 \"2\" is not a number from 0 to 1");
+}
+
+// Audit: a tolerances.tsv written from golden.md's description (no header line) lost its first
+// line without a word, and a line whose scene was misspelt loosened nothing without a word;
+// the test it was meant for then failed, or a deleted scene's loosening lingered.
+TEST(GoldenTolerances, AFirstLineThatIsNotTheHeaderIsAnError) {
+  const std::string p = writeTemp("t6.tsv", "glass\t4\t0.5\tnoisy\nball\t4\t0.5\tnoisy\n");
+  EXPECT_EQ(errorOf([&] { readTolerances(p); }),
+            p + ":1: error: the first line must be the header \"scene<TAB>max_levels<TAB>max_fraction_over_1"
+                "[<TAB>max_off_by_1]<TAB>reason\", not a tolerance (glass)");
+}
+
+TEST(GoldenTolerances, ALineForNoSceneOfTheSuiteIsAnError) {
+  const fs::path dir = fs::temp_directory_path() / "pvrt-golden-test-suite";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "reference");
+  for (const char* scene : {"glass", "a.b"}) std::ofstream(dir / (std::string(scene) + ".xml")) << "<scene/>";
+  const std::string head = "scene\tmax_levels\tmax_fraction_over_1\treason\n";
+  const std::string tolerances = (dir / "reference" / "tolerances.tsv").string();
+  std::ofstream(tolerances) << head << "*\t2\t0\tall\nglass\t4\t0.5\tnoisy\nglass.adaptive\t4\t0.5\tnoisy\n"
+                            << "a.b.fast\t4\t0.5\tdotted\n";
+  EXPECT_EQ(openSuite(dir.string(), (dir / "reference").string()).tolerances.of("glass").limits.maxLevels, 4);
+  std::ofstream(tolerances, std::ios::app) << "glas\t4\t0.5\ttypo\n";
+  EXPECT_EQ(errorOf([&] { openSuite(dir.string(), (dir / "reference").string()); }),
+            tolerances + ":6: error: glas: no scene " + (dir / "glas.xml").string() +
+                " and no reference of that name (a misspelt or removed scene?)");
+  fs::remove_all(dir);
 }
 
 TEST(GoldenSettings, PovrayAntialiasingMapsToThePovSampler) {
