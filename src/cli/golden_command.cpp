@@ -7,6 +7,8 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/interrupt.h"
+#include "core/output_files.h"
 #include "golden/references.h"
 #include "golden/report.h"
 #include "golden/runner.h"
@@ -55,6 +57,15 @@ int finish(const GoldenOptions& o, const std::vector<Outcome>& outcomes, const s
   return failures ? 1 : 0;
 }
 
+// A --report or --junit path that cannot be written fails now, naming it, rather than after
+// every render, naming the report's scratch picture (`r.html.scratch.png`). The default ones
+// are in --out, which the run makes first.
+void checkReportPaths(const GoldenOptions& o) {
+  OutputFiles probe;
+  if (!o.report.empty()) probe.output(o.report, "--report");
+  if (!o.junit.empty()) probe.output(o.junit, "--junit");
+}
+
 void clearResults(const GoldenOptions& o) {
   if (o.append) return;
   std::error_code ec;
@@ -69,12 +80,14 @@ std::string hintFor(const GoldenOptions& o) {
 
 int runGolden(const GoldenOptions& o) {
   const Suite suite = openSuite(o.scenes, referencesOf(o));
+  checkReportPaths(o);
   clearResults(o);
   return finish(o, runSuite(suite, o.run), hintFor(o));
 }
 
 int compareGolden(const GoldenOptions& o) {
   const Suite suite = openSuite(o.scenes, referencesOf(o));
+  checkReportPaths(o);
   clearResults(o);
   return finish(o, compareFolder(suite, o.images, o.run),
                 "Images of " + o.images + " against the references of " + referencesOf(o) + ".");
@@ -91,6 +104,7 @@ int makeGolden(GoldenOptions o) {
 // and stores the changed and new ones only with --yes.
 int blessGolden(GoldenOptions o) {
   Suite suite = openSuite(o.scenes, referencesOf(o));
+  checkReportPaths(o);
   Suite planned = suite;
   std::vector<ManifestEntry> entries;
   for (const std::string& scene : o.names.empty() ? suite.sceneNames : o.names) {
@@ -240,6 +254,9 @@ Command addGoldenCommand(CLI::App& app) {
   report->add_option("--references", o->references, "The references folder, for the report's hint");
 
   return [o, run, cmp, make, bless] {
+    // Ctrl-C ends the renders and POV-Ray, then this run (130), removing its scratch
+    // folder; references and the manifest are replaced together or not at all.
+    interrupt::install(removeStagedFilesNow);
     if (run->parsed()) return runGolden(*o);
     if (cmp->parsed()) return compareGolden(*o);
     if (make->parsed()) return makeGolden(*o);

@@ -1,16 +1,20 @@
 #include "golden/process.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "core/interrupt.h"
 
 extern char** environ;
 
@@ -43,6 +47,17 @@ int exitCodeOf(int status) {
   return -1;
 }
 
+// Ctrl-C at a terminal reaches the renders too, but a signal sent to pvrt alone must not
+// leave them running: each gets the signal pvrt caught, and each is waited for before the
+// interrupt ends the run (so nothing is still writing once pvrt has exited).
+template <typename Running>
+void endAll(const Running& running) {
+  for (const auto& [pid, job] : running) kill(pid, interrupt::caught().load());
+  for (const auto& [pid, job] : running)
+    while (waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+    }
+}
+
 }  // namespace
 
 std::vector<JobResult> runJobs(const std::vector<Job>& jobs, int parallel) {
@@ -50,6 +65,10 @@ std::vector<JobResult> runJobs(const std::vector<Job>& jobs, int parallel) {
   std::map<pid_t, std::pair<size_t, Clock::time_point>> running;
   size_t next = 0;
   while (next < jobs.size() || !running.empty()) {
+    if (interrupt::requested()) {  // start nothing more; the callers' scratch goes as the error unwinds
+      endAll(running);
+      interrupt::check();
+    }
     while (next < jobs.size() && int(running.size()) < std::max(1, parallel)) {
       const pid_t pid = start(jobs[next]);
       if (pid < 0) results[next].exitCode = 127;
@@ -59,6 +78,7 @@ std::vector<JobResult> runJobs(const std::vector<Job>& jobs, int parallel) {
     if (running.empty()) continue;
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0 && errno == EINTR) continue;  // a signal: the loop's head decides
     if (pid < 0) break;
     auto it = running.find(pid);
     if (it == running.end()) continue;

@@ -19,6 +19,8 @@ struct JobResult {
 };
 
 // Runs every job, at most `parallel` at once, and returns their results in the same order.
+// When SIGINT or SIGTERM has been caught (interrupt::install), it starts no more, ends the
+// running ones with that signal, waits for them and throws interrupt::error().
 std::vector<JobResult> runJobs(const std::vector<Job>& jobs, int parallel);
 JobResult runJob(const Job& job);
 

@@ -13,6 +13,32 @@ namespace pvrt::golden {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// A tolerance line names a scene of the folder or of the manifest, or SCENE.VARIANT of one:
+// a misspelt name would otherwise loosen nothing, unseen, and a removed scene's line linger.
+bool namesASceneOf(const Suite& s, const std::string& name) {
+  auto known = [&](const std::string& scene) {
+    return std::binary_search(s.sceneNames.begin(), s.sceneNames.end(), scene) ||
+           std::any_of(s.manifest.entries.begin(), s.manifest.entries.end(),
+                       [&](const ManifestEntry& e) { return e.scene == scene; });
+  };
+  if (known(name)) return true;
+  for (size_t dot = name.find('.'); dot != std::string::npos; dot = name.find('.', dot + 1))
+    if (known(name.substr(0, dot))) return true;  // SCENE.VARIANT (a scene's name may hold dots)
+  return false;
+}
+
+void checkToleranceNames(const Suite& s) {
+  for (const auto& [name, t] : s.tolerances.scenes)
+    if (!namesASceneOf(s, name))
+      throw Error(ExitCode::SceneError, t.origin + ": error: " + printableName(name) + ": no scene " +
+                                            printableName(s.scenePath(name)) +
+                                            " and no reference of that name (a misspelt or removed scene?)");
+}
+
+}  // namespace
+
 Suite openSuite(const std::string& scenes, const std::string& references) {
   std::error_code ec;
   if (!fs::is_directory(scenes, ec))
@@ -31,6 +57,7 @@ Suite openSuite(const std::string& scenes, const std::string& references) {
     throw Error(ExitCode::Usage, "pvrt golden: error: \"" + printableName(scenes) +
                                      "\" holds no scenes (*.xml) and no references: nothing to test");
   s.tolerances = readTolerances(references + "/tolerances.tsv");
+  checkToleranceNames(s);
   return s;
 }
 

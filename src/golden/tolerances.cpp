@@ -12,6 +12,10 @@ Tolerances readTolerances(const std::string& path) {
   const size_t fields = offBy1 ? 5 : 4;
   const std::string want = offBy1 ? "scene, max_levels, max_fraction_over_1, max_off_by_1, reason"
                                   : "scene, max_levels, max_fraction_over_1, reason";
+  // Without the header its line would be skipped as one, and that tolerance lost unseen.
+  if (!lines.empty() && splitTabs(lines[0])[0] != "scene")
+    throw tsvError(path, 1, "the first line must be the header \"scene<TAB>max_levels<TAB>max_fraction_over_1"
+                            "[<TAB>max_off_by_1]<TAB>reason\", not a tolerance (" + splitTabs(lines[0])[0] + ")");
   for (size_t i = 1; i < lines.size(); ++i) {
     const int line = int(i) + 1;
     if (lines[i].empty()) continue;

@@ -31,7 +31,7 @@ set_tests_properties(golden.fidelity_crease.pov_blocks PROPERTIES LABELS golden)
 set(PVRT_GOLDEN_TOOL ${CMAKE_CURRENT_SOURCE_DIR}/golden/golden_tool.sh)
 add_test(NAME golden-tool.setup COMMAND ${PVRT_GOLDEN_TOOL} setup ${PROJECT_BINARY_DIR} ${PROJECT_SOURCE_DIR})
 set_tests_properties(golden-tool.setup PROPERTIES FIXTURES_SETUP golden-tool LABELS golden-tool)
-foreach(case make variant run broken stale tolerance bless external new append cmake mpi usage)
+foreach(case make variant run broken stale tolerance bless external new append cmake mpi usage interrupt)
   add_test(NAME golden-tool.${case} COMMAND ${PVRT_GOLDEN_TOOL} ${case} ${PROJECT_BINARY_DIR} ${PROJECT_SOURCE_DIR})
   set_tests_properties(golden-tool.${case} PROPERTIES LABELS golden-tool FIXTURES_REQUIRED golden-tool
                                                      SKIP_RETURN_CODE 77 TIMEOUT 120)

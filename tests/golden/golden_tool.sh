@@ -217,10 +217,31 @@ usage)  # usage errors have their own code, 2; unwritable output 4; malformed su
   expect 4 "$pvrt" golden run "$dir" --out /proc/no-such-folder
   has '^pvrt: error: cannot write "/proc/no-such-folder/images": ' "$dir/out"
   expect 2 "$pvrt" golden compare "$dir"
+  # audit: an unwritable --report failed after every render, naming its scratch picture
+  expect 4 "$pvrt" golden run "$dir" --backends serial --out "$out" --report /no/such/folder/r.html
+  has '^pvrt: error: cannot write "/no/such/folder/r.html": ' "$dir/out"
+  [ ! -e "$out/images" ] || fail "rendered before finding that the report cannot be written"
   printf 'scene\tvariant\n' >"$dir/reference/manifest.tsv"
   printf 'x\ty\n' >>"$dir/reference/manifest.tsv"
   expect 3 "$pvrt" golden run "$dir" --out "$out"
   has "manifest.tsv:2: error: 2 fields where the header has 8" "$dir/out"
+  ;;
+interrupt)  # audit: SIGINT to pvrt golden alone used to end only the render it hit (or, from a
+  # shell that ignores it in the background, nothing): the run went on and wrote its report
+  printf '#!/bin/sh\nexec sleep 30\n' >"$dir/slow-mpirun" && chmod +x "$dir/slow-mpirun"
+  "$pvrt" golden run "$dir" --backends mpi --mpirun "$dir/slow-mpirun" --jobs 2 --out "$out" >"$dir/out" 2>&1 &
+  pid=$!
+  sleep 1
+  kill -INT $pid
+  started=$SECONDS
+  wait $pid
+  rc=$?
+  cat "$dir/out"
+  [ "$rc" -eq 130 ] || fail "exit code $rc, expected 130"
+  [ $((SECONDS - started)) -le 5 ] || fail "took $((SECONDS - started)) s to stop"
+  has "^pvrt: interrupted; nothing was written" "$dir/out"
+  [ ! -e "$out/report.html" ] && [ ! -e "$out/junit.xml" ] || fail "an interrupted run wrote a report"
+  ! pgrep -f "$dir/slow-mpirun" >/dev/null || fail "a render was left running"
   ;;
 *) fail "unknown mode" ;;
 esac
