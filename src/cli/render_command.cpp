@@ -331,11 +331,10 @@ Prepared prepare(const RenderOptions& o, bool writes) {
                 "are traced while its neighbours are)");
   // POV-Ray's adaptive decisions follow its 32-pixel blocks of the whole image, which a region
   // would cut elsewhere: the region's pixels would not be the full image's.
-  if (check.adaptive() && s.region)
+  if ((check.adaptive() || check.blockCache()) && s.region)
     throw Error(ExitCode::Usage,
                 "a render region (--start-col ... --end-row) is not available with --aa-threshold, "
-                "--aa-method 2 or --pov-blocks (the adaptive decisions follow blocks of the whole "
-                "image)");
+                "--aa-method 2 or --pov-blocks (they follow POV-Ray's blocks of the whole image)");
   s.backend = o.backendName == "serial" ? Backend::Serial : Backend::OpenMP;
   s.threads = o.threads;
   if (!o.scheduleName.empty()) {

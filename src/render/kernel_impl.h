@@ -120,6 +120,36 @@ void renderRectKernel(const Scene& scene, const PixelSampler& sampler, const Wor
     stats.nonFiniteSamples += skyNonFinite;
     out.finish(px, py, sum, size_t(total), skyNonFinite == 0);
   };
+  if (sampler.blockCache()) {
+    // --pov-blocks at one ray a pixel (POV-Ray's -A): each block's pixels row by row, as
+    // SimpleSamplingM0 traces them, the shadow cache kept from pixel to pixel within the
+    // block. Work items hold whole blocks (blockGranule), so every schedule traces the same.
+    const int b = sampler.blockGranule();
+    for (int by = rect.y0 - rect.y0 % b; by < rect.y1; by += b) {
+      for (int bx = rect.x0 - rect.x0 % b; bx < rect.x1; bx += b) {
+        tracer.beginPixel();
+        for (int y = std::max(by, rect.y0); y < std::min(by + b, rect.y1); ++y) {
+          if (grid) grid->setRow(y);
+          for (int x = std::max(bx, rect.x0); x < std::min(bx + b, rect.x1); ++x) {
+            const uint64_t before = stats.work();
+            if (vista && vista->clear(x, y)) {
+              skyPixel(x, y);
+            } else {
+              if (!grid) sampler.offsets(x, y, offsets);
+              ++stats.primaryRays;
+              const Ray ray = grid ? grid->ray(x, 0) : scene.camera.ray(x, y, offsets[0].dx, offsets[0].dy, w, h);
+              const Color c = tracer.trace(ray, 0, 1.0, scene.cameraInteriors);
+              PixelSum sum = out.start(x, y);
+              sum.add(c);
+              out.finish(x, y, sum, size_t(total), finiteSamples(&c, 1, stats));
+            }
+            if (load) load[size_t(y) * w + x] += float(stats.work() - before);
+          }
+        }
+      }
+    }
+    return;
+  }
   for (int y = rect.y0; y < rect.y1; ++y) {
     if (grid) grid->setRow(y);
     for (int x = rect.x0; x < rect.x1; ++x) {

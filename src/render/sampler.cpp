@@ -105,6 +105,7 @@ void PixelSampler::validateAdaptive() {
     throw Error(ExitCode::Usage, "--aa-method 2 goes at most 9 levels deep (POV-Ray's +R9, --spp 81), got --spp " +
                                      std::to_string(s_.samplesPerPixel));
   adaptive_ = asked && count_ > 1;
+  blockCache_ = a.blocks && count_ == 1;
 }
 
 void PixelSampler::offsets(int x, int y, std::vector<SubSample>& out) const {

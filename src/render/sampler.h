@@ -66,9 +66,12 @@ class PixelSampler {
   // True when pixels are rendered by render/adaptive.h rather than by offsets().
   bool adaptive() const { return adaptive_; }
   const AdaptiveSettings& adaptiveSettings() const { return s_.adaptive; }
+  // True for --pov-blocks at one ray a pixel (POV-Ray's -A): the pixels are traced block by
+  // block in POV-Ray's order, the shadow cache kept from pixel to pixel within a block.
+  bool blockCache() const { return blockCache_; }
   // The side of the squares whose pixels must be rendered together: work items are cut
-  // along multiples of it (POV-Ray's block when adaptive, else 1).
-  int blockGranule() const { return adaptive_ ? s_.adaptive.blockSize : 1; }
+  // along multiples of it (POV-Ray's block when adaptive or blockCache(), else 1).
+  int blockGranule() const { return adaptive_ || blockCache_ ? s_.adaptive.blockSize : 1; }
 
  private:
   void validateAdaptive();
@@ -77,6 +80,7 @@ class PixelSampler {
   int count_ = 1;
   int first_ = 0;
   bool adaptive_ = false;
+  bool blockCache_ = false;
   std::vector<SubSample> fixed_;
 };
 

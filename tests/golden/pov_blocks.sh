@@ -2,11 +2,12 @@
 # --pov-blocks against POV-Ray's own render: the same image whatever the threads and schedule
 # (bit for bit), and within BOUND of the reference's channels over 1 level, a bound that the
 # default per-pixel kernel exceeds (docs/fidelity.md, the shadow cache).
-# usage: pov_blocks.sh PVRT SCENE REFERENCE OUTDIR MAX_LEVELS BOUND
+# usage: pov_blocks.sh PVRT SCENE REFERENCE OUTDIR MAX_LEVELS BOUND [SPP]
+# SPP 9 (the default) is POV-Ray's +A0.0 +AM1 +R3 -J, SPP 1 its -A.
 set -eu
-pvrt=$1 scene=$2 ref=$3 out=$4 levels=$5 bound=$6
+pvrt=$1 scene=$2 ref=$3 out=$4 levels=$5 bound=$6 spp=${7:-9}
 mkdir -p "$out"
-render() { "$pvrt" render "$scene" -W 160 -H 100 --spp 9 --sampler pov --quiet "$@"; }
+render() { "$pvrt" render "$scene" -W 160 -H 100 --spp "$spp" --sampler pov --quiet "$@"; }
 render -o "$out/serial.png" --pov-blocks --backend serial
 render -o "$out/t2.png" --pov-blocks --threads 2 --schedule cyclic
 render -o "$out/tiles.png" --pov-blocks --threads 2 --schedule dynamic --tile-size 16
