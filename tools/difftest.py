@@ -4,6 +4,7 @@ numbers so that rays meet edges, faces and each other exactly, rendered by POV-R
 
     tools/difftest.py --count 50 --seed 1 --out /tmp/difftest        # 50 scenes, seeds 1..50
     tools/difftest.py --count 20 --seed 7 --variant noaa --antialiasing=-A    # another antialiasing setting
+    tools/difftest.py --count 20 --seed 7 --render-option=--pov-blocks       # pvrt in POV-Ray's block order
 
 Each scene is written to OUT/scenes/diff_SEED.xml; `pvrt golden make` renders their exports with POV-Ray
 (the references, OUT/scenes/reference/), `pvrt golden run` renders them with pvrt and compares. The summary
@@ -217,6 +218,8 @@ def main(argv):
     ap.add_argument("--jobs", type=int, default=1, help="POV-Ray and pvrt renders at once (default 1)")
     ap.add_argument("--width", type=int, default=96, help="image width (default 96)")
     ap.add_argument("--variant", default="aa", help="reference variant name (default aa)")
+    ap.add_argument("--render-option", action="append", default=[],
+                    help="an option for pvrt's renders, e.g. --render-option=--pov-blocks (repeatable)")
     ap.add_argument("--antialiasing", default="+A0.0 +AM1 +R3 -J",
                     help="POV-Ray's antialiasing for the references (default '+A0.0 +AM1 +R3 -J'; "
                          "--antialiasing=-A for none)")
@@ -245,6 +248,7 @@ def main(argv):
     runcmd = [a.pvrt, "golden", "run", scenes, "--backends", "serial", "--jobs", str(a.jobs), "--out", out]
     if a.variant != "aa":
         runcmd += ["--variant", a.variant]
+    runcmd += ["--render-option=" + o for o in a.render_option]
     got = run(runcmd)
     failed = []
     for line in got.stdout.splitlines():

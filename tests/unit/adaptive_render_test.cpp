@@ -74,6 +74,30 @@ TEST(AdaptiveRender, PovBlocksTracesEveryPixelFullyInBlocks) {
   EXPECT_EQ(test::renderXml(kScene, one).image.data(), r.image.data());
 }
 
+// --pov-blocks at one ray a pixel (POV-Ray's -A): whole blocks to a work item, each traced in
+// POV-Ray's order with the shadow cache kept from pixel to pixel; one ray a pixel still, and
+// the same bits on one thread and on two threads with rows dealt as bands. In this scene no
+// shadow rests on the cache's smaller depths, so the image is the plain -A's too.
+TEST(AdaptiveRender, PovBlocksAtOneRayAPixelKeepsTheCacheWithinBlocks) {
+  SamplerSettings blocks{SamplerKind::Pov, 1, 0, {0.0, 1, 32}};
+  blocks.adaptive.blocks = true;
+  const PixelSampler sampler(blocks);
+  EXPECT_FALSE(sampler.adaptive());
+  EXPECT_TRUE(sampler.blockCache());
+  EXPECT_EQ(sampler.blockGranule(), 32);
+  EXPECT_FALSE(PixelSampler(SamplerSettings{SamplerKind::Pov, 1, 0}).blockCache());
+  const RenderResult r = renderWith(blocks);
+  EXPECT_EQ(r.totals.primaryRays, 80u * 50u);
+  EXPECT_EQ(r.image.data(), renderWith({SamplerKind::Pov, 1, 0}).image.data());
+  RenderSettings one = test::settings(80, 50, Backend::Serial, 1);
+  one.sampler = blocks;
+  RenderSettings cyclic = test::settings(80, 50, Backend::OpenMP, 2);
+  cyclic.sampler = blocks;
+  cyclic.schedule.strategy = Strategy::Cyclic;
+  EXPECT_EQ(test::renderXml(kScene, one).image.data(), r.image.data());
+  EXPECT_EQ(test::renderXml(kScene, cyclic).image.data(), r.image.data());
+}
+
 // A negative light on the floor, reflected with exponent 2 by the sphere: blue below 0
 // raised to 1/2, so NaN in POV-Ray as in pvrt (blind8's scene 09f).
 const char* kNaNScene = R"(<scene>
