@@ -30,7 +30,7 @@ set_tests_properties(golden.fidelity_crease.pov_blocks PROPERTIES LABELS golden)
 add_test(NAME golden.area_sample_on_sphere.pov_blocks
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/golden/pov_blocks.sh $<TARGET_FILE:pvrt>
                  ${CMAKE_CURRENT_SOURCE_DIR}/golden/area_sample_on_sphere.xml
-                 ${CMAKE_CURRENT_SOURCE_DIR}/golden/area_sample_on_sphere.noaa.png
+                 ${PROJECT_SOURCE_DIR}/reference/pov_blocks/area_sample_on_sphere.noaa.png
                  ${PROJECT_BINARY_DIR}/pov-blocks-noaa-out 255 0.0002 1)
 set_tests_properties(golden.area_sample_on_sphere.pov_blocks PROPERTIES LABELS golden)
 
